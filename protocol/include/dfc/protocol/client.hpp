@@ -1,0 +1,100 @@
+#pragma once
+// The client side of protocol v1 (the coupler, the conformance checker):
+// one DEALER socket to one server, request/reply with deadlines.
+#include <chrono>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <zmq.hpp>
+
+#include "dfc/protocol/codec.hpp"
+#include "dfc/protocol/message.hpp"
+#include "dfc/protocol/solver_backend.hpp"
+
+namespace dfc::protocol {
+
+/// No reply within the deadline.
+class TimeoutError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The server answered with an `error` message.
+class RemoteError : public std::runtime_error {
+ public:
+  RemoteError(std::string code, std::string message, std::string key)
+      : std::runtime_error(message), code_(std::move(code)), key_(std::move(key)) {}
+  [[nodiscard]] const std::string& code() const noexcept { return code_; }
+  [[nodiscard]] const std::string& key() const noexcept { return key_; }
+
+ private:
+  std::string code_;
+  std::string key_;
+};
+
+class Connection {
+ public:
+  /// Connects a DEALER socket to `endpoint`. `label` names the server in errors.
+  Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits = {});
+
+  /// Called about every 100 ms while a reply is awaited; may throw to abort
+  /// the wait (the coupler checks there that the server process is alive).
+  using WaitHook = std::function<void()>;
+  void set_wait_hook(WaitHook hook) { wait_hook_ = std::move(hook); }
+
+  /// Sends `request` (its seq is assigned here) and returns the reply with the
+  /// matching reply_to; stale replies to earlier, abandoned requests are skipped.
+  /// Throws TimeoutError, or RemoteError when the reply is an `error`.
+  Message request(Message request, std::chrono::milliseconds deadline);
+
+  /// Like request() but returns `error` replies instead of throwing (conformance checks).
+  Message request_raw(Message request, std::chrono::milliseconds deadline);
+
+  /// Sends raw frames (for malformed-message checks) and waits for any reply.
+  std::optional<Message> send_frames_raw(const std::vector<std::string>& frames, std::chrono::milliseconds deadline);
+
+  [[nodiscard]] const std::string& label() const noexcept { return label_; }
+
+ private:
+  std::optional<Message> await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline);
+
+  zmq::socket_t socket_;
+  std::string label_;
+  Limits limits_;
+  std::int64_t next_seq_ = 1;
+  WaitHook wait_hook_;
+};
+
+/// Typed calls of the lifecycle (SPEC.md §4), on top of Connection.
+class SolverClient {
+ public:
+  SolverClient(zmq::context_t& context, const std::string& endpoint, std::string label);
+
+  struct Hello {
+    std::string solver_name;
+    std::string solver_version;
+    std::string protocol_version;
+    std::string role;
+    std::vector<std::string> capabilities;
+    [[nodiscard]] bool has(std::string_view capability) const;
+  };
+  Hello hello(const std::string& client_name, std::chrono::milliseconds deadline);
+  /// Returns the configured reply's body ({scenario_hash, info}); checks the
+  /// hash the server computed equals the hash of the text sent.
+  nlohmann::json configure(const std::string& section_json, std::chrono::milliseconds deadline);
+  InterfaceMesh get_interface(std::chrono::milliseconds deadline);
+  void set_interface(const InterfaceMesh& mesh, std::chrono::milliseconds deadline);
+  Message advance(std::int64_t step, std::int64_t n_steps, double dt, std::vector<Array> inputs, std::chrono::milliseconds deadline);
+  nlohmann::json query(std::chrono::milliseconds deadline);
+  Message snapshot(std::chrono::milliseconds deadline);
+  void shutdown(std::chrono::milliseconds deadline);
+
+  Connection& connection() noexcept { return connection_; }
+
+ private:
+  Connection connection_;
+};
+
+}  // namespace dfc::protocol

@@ -1,0 +1,49 @@
+#pragma once
+// ServerSession: the v1 lifecycle state machine of a server (SPEC.md §5),
+// independent of sockets so it can be unit-tested message by message.
+//
+//   fresh --hello--> greeted --configure--> configured --advance--> running
+//   any state --shutdown--> closed;   running --solver failure--> failed
+#include <cstdint>
+#include <string_view>
+
+#include "dfc/protocol/codec.hpp"
+#include "dfc/protocol/message.hpp"
+#include "dfc/protocol/solver_backend.hpp"
+
+namespace dfc::protocol {
+
+enum class SessionState { fresh, greeted, configured, running, failed, closed };
+[[nodiscard]] std::string_view session_state_name(SessionState state) noexcept;
+
+class ServerSession {
+ public:
+  ServerSession(SolverBackend& backend, Limits limits);
+
+  /// The reply to one decoded request. Never throws: every failure becomes an `error` reply.
+  [[nodiscard]] Message handle(const Message& request);
+
+  [[nodiscard]] SessionState state() const noexcept { return state_; }
+  [[nodiscard]] std::int64_t step() const noexcept { return step_; }
+  [[nodiscard]] bool closed() const noexcept { return state_ == SessionState::closed; }
+
+ private:
+  Message dispatch(const Message& request);
+  Message on_hello(const Message& request);
+  Message on_configure(const Message& request);
+  Message on_get_interface(const Message& request);
+  Message on_set_interface(const Message& request);
+  Message on_advance(const Message& request);
+  Message on_query(const Message& request);
+  Message on_snapshot(const Message& request);
+  void require_state(const Message& request, std::initializer_list<SessionState> allowed) const;
+  Message reply_to(const Message& request, std::string_view type);
+
+  SolverBackend& backend_;
+  Limits limits_;
+  SessionState state_ = SessionState::fresh;
+  std::int64_t step_ = 0;
+  std::int64_t next_seq_ = 0;
+};
+
+}  // namespace dfc::protocol

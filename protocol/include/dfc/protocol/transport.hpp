@@ -1,0 +1,32 @@
+#pragma once
+// Thin cppzmq helpers: socket options, sending a Message as a multipart
+// message, receiving with a deadline (SPEC.md §2). No protocol logic here.
+#include <chrono>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "dfc/protocol/codec.hpp"
+#include "dfc/protocol/message.hpp"
+
+namespace dfc::protocol {
+
+/// Linger 0 (abort paths never block, coupling-and-zeromq.md §4.2) and a
+/// transport-level cap on frame size well above the protocol limits, so that an
+/// over-limit frame still reaches the codec and gets a TOO_LARGE reply while a
+/// absurdly large one is dropped by libzmq before it is buffered.
+void configure_socket(zmq::socket_t& socket, const Limits& limits);
+
+/// Sends `message` (header frame + one frame per array), preceded by
+/// `routing_id` when replying from a ROUTER socket.
+void send_message(zmq::socket_t& socket, const Message& message, const zmq::message_t* routing_id = nullptr);
+
+/// Receives one whole multipart message, or nullopt if none arrives within `timeout`.
+[[nodiscard]] std::optional<std::vector<zmq::message_t>> receive_frames(zmq::socket_t& socket, std::chrono::milliseconds timeout);
+
+/// Byte views of frames[first..]; valid while `frames` lives.
+[[nodiscard]] std::vector<std::span<const std::byte>> frame_views(const std::vector<zmq::message_t>& frames, std::size_t first);
+
+}  // namespace dfc::protocol

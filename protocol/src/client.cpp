@@ -1,0 +1,160 @@
+#include "dfc/protocol/client.hpp"
+
+#include "dfc/common/version.hpp"
+#include "dfc/protocol/transport.hpp"
+
+namespace dfc::protocol {
+
+namespace {
+constexpr auto kSlice = std::chrono::milliseconds(100);
+
+std::string shape_mismatch(const std::string& label, const std::string& what) { return label + " sent " + what; }
+}  // namespace
+
+Connection::Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits)
+    : socket_(context, zmq::socket_type::dealer), label_(std::move(label)), limits_(limits) {
+  configure_socket(socket_, limits_);
+  socket_.connect(endpoint);
+}
+
+std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline) {
+  const auto until = std::chrono::steady_clock::now() + deadline;
+  while (true) {
+    if (wait_hook_) wait_hook_();
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return std::nullopt;
+    auto frames = receive_frames(socket_, std::min(left, std::chrono::milliseconds(kSlice)));
+    if (!frames) continue;
+    const auto views = frame_views(*frames, 0);
+    Message reply = decode(views, limits_);
+    if (!seq || !reply.reply_to || *reply.reply_to == *seq) return reply;
+    // A late reply to a request we gave up on: skip it.
+  }
+}
+
+Message Connection::request_raw(Message request, std::chrono::milliseconds deadline) {
+  request.seq = next_seq_++;
+  send_message(socket_, request);
+  auto reply = await_reply(request.seq, deadline);
+  if (!reply)
+    throw TimeoutError(label_ + " did not answer '" + request.type + "' within " + std::to_string(static_cast<double>(deadline.count()) / 1000.0).substr(0, 6) + " s");
+  return *reply;
+}
+
+Message Connection::request(Message request, std::chrono::milliseconds deadline) {
+  const std::string type = request.type;
+  Message reply = request_raw(std::move(request), deadline);
+  if (reply.type == type::error)
+    throw RemoteError(reply.body.value("code", "?"), reply.body.value("message", "(no message)"), reply.body.value("key", ""));
+  return reply;
+}
+
+std::optional<Message> Connection::send_frames_raw(const std::vector<std::string>& frames, std::chrono::milliseconds deadline) {
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    socket_.send(zmq::buffer(frames[i]), i + 1 < frames.size() ? zmq::send_flags::sndmore : zmq::send_flags::none);
+  return await_reply(std::nullopt, deadline);
+}
+
+SolverClient::SolverClient(zmq::context_t& context, const std::string& endpoint, std::string label)
+    : connection_(context, endpoint, std::move(label)) {}
+
+bool SolverClient::Hello::has(std::string_view capability) const {
+  for (const auto& c : capabilities)
+    if (c == capability) return true;
+  return false;
+}
+
+SolverClient::Hello SolverClient::hello(const std::string& client_name, std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::hello;
+  request.body = {{"client", {{"name", client_name}, {"version", std::string(project_version())}}}};
+  const Message reply = connection_.request(std::move(request), deadline);
+  if (reply.type != type::hello_ok) throw RemoteError("BAD_MESSAGE", shape_mismatch(connection_.label(), "'" + reply.type + "' to hello"), "");
+  Hello hello;
+  const auto& body = reply.body;
+  try {
+    hello.solver_name = body.at("solver").at("name").get<std::string>();
+    hello.solver_version = body.at("solver").at("version").get<std::string>();
+    hello.protocol_version = body.at("protocol_version").get<std::string>();
+    hello.role = body.at("role").get<std::string>();
+    hello.capabilities = body.at("capabilities").get<std::vector<std::string>>();
+  } catch (const nlohmann::json::exception& e) {
+    throw RemoteError("BAD_MESSAGE", connection_.label() + " sent a hello_ok without the fields SPEC.md §4.1 requires: " + e.what(), "");
+  }
+  return hello;
+}
+
+nlohmann::json SolverClient::configure(const std::string& section_json, std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::configure;
+  request.body = {{"section_json", section_json}};
+  const Message reply = connection_.request(std::move(request), deadline);
+  const std::string expected = fnv1a64_hex(section_json);
+  if (reply.body.value("scenario_hash", "") != expected)
+    throw RemoteError("BAD_MESSAGE", connection_.label() + " reports scenario hash '" + reply.body.value("scenario_hash", "") +
+                                         "' but the section sent hashes to '" + expected + "': it did not receive what was sent",
+                      "");
+  return reply.body;
+}
+
+InterfaceMesh SolverClient::get_interface(std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::get_interface;
+  const Message reply = connection_.request(std::move(request), deadline);
+  const Array* ids = find_array(reply.arrays, field::node_ids);
+  const Array* facets = find_array(reply.arrays, field::facets);
+  if (ids == nullptr || ids->shape.size() != 1 || facets == nullptr || facets->shape.size() != 2 || facets->shape[1] != 3)
+    throw RemoteError("BAD_ARRAY", shape_mismatch(connection_.label(), "an interface without node_ids [n] and facets [m,3]"), "");
+  InterfaceMesh mesh;
+  mesh.node_ids = ids->to_i64();
+  mesh.coordinates = require_f64(reply.arrays, field::coordinates, ids->shape[0], 3);
+  mesh.facets = facets->to_i64();
+  for (const auto index : mesh.facets)
+    if (index < 0 || index >= mesh.node_count())
+      throw RemoteError("BAD_ARRAY", shape_mismatch(connection_.label(), "facets referring to a node row that does not exist"), "");
+  return mesh;
+}
+
+void SolverClient::set_interface(const InterfaceMesh& mesh, std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::set_interface;
+  const std::int64_t n = mesh.node_count();
+  request.arrays.push_back(Array::from_i64(field::node_ids, {n}, mesh.node_ids));
+  request.arrays.push_back(Array::from_f64(field::coordinates, {n, 3}, mesh.coordinates));
+  request.arrays.push_back(Array::from_i64(field::facets, {mesh.facet_count(), 3}, mesh.facets));
+  (void)connection_.request(std::move(request), deadline);
+}
+
+Message SolverClient::advance(std::int64_t step, std::int64_t n_steps, double dt, std::vector<Array> inputs, std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::advance;
+  request.step = step;
+  request.body = {{"n_steps", n_steps}, {"dt", dt}};
+  request.arrays = std::move(inputs);
+  Message reply = connection_.request(std::move(request), deadline);
+  if (reply.type != type::advanced || !reply.step || *reply.step != step + n_steps)
+    throw RemoteError("STEP_MISMATCH", connection_.label() + " answered advance from step " + std::to_string(step) + " by " +
+                                           std::to_string(n_steps) + " with step " + (reply.step ? std::to_string(*reply.step) : "none"),
+                      "");
+  return reply;
+}
+
+nlohmann::json SolverClient::query(std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::query;
+  return connection_.request(std::move(request), deadline).body.value("monitors", nlohmann::json::object());
+}
+
+Message SolverClient::snapshot(std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::snapshot;
+  return connection_.request(std::move(request), deadline);
+}
+
+void SolverClient::shutdown(std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::shutdown;
+  (void)connection_.request(std::move(request), deadline);
+}
+
+}  // namespace dfc::protocol

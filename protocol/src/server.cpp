@@ -1,0 +1,118 @@
+#include "dfc/protocol/server.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <string_view>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/common/version.hpp"
+#include "dfc/protocol/server_session.hpp"
+#include "dfc/protocol/transport.hpp"
+
+namespace dfc::protocol {
+
+namespace {
+
+struct ServerOptions {
+  std::string bind = "tcp://127.0.0.1:*";
+  double idle_timeout_s = 3600.0;
+  Limits limits;
+};
+
+void print_help(const ServerProgram& program) {
+  std::cout << program.name << " — " << program.summary << "\n\n"
+            << "Usage: " << program.name << " [--bind ENDPOINT] [--idle-timeout SECONDS] [--max-array-bytes N]\n"
+            << "       " << program.name << " --help | --version\n\n"
+            << "A protocol v" << version_string() << " server (see protocol/SPEC.md). It binds a ZeroMQ ROUTER socket,\n"
+            << "prints one line 'DFC-LISTENING <endpoint>' on stdout, and serves one client\n"
+            << "(normally the coupler) until it receives 'shutdown'. Diagnostics go to stderr.\n\n"
+            << "Options:\n"
+            << "  --bind ENDPOINT        where to listen (default tcp://127.0.0.1:* = loopback, any free port)\n"
+            << "  --idle-timeout S       exit with status 3 after S seconds without any message (default 3600; 0 = never)\n"
+            << "  --max-array-bytes N    largest array frame accepted (default 268435456)\n"
+            << "  --help                 this text;  --version  solver and protocol versions\n\n"
+            << "Configure section (the scenario part the coupler sends in 'configure'):\n"
+            << program.config_help << "\n";
+}
+
+// Parses argv; returns an exit status if the program should stop now.
+std::optional<int> parse_options(int argc, char** argv, const ServerProgram& program, ServerOptions& options) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UserError("option " + std::string(arg) + " needs a value; see --help");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      print_help(program);
+      return 0;
+    }
+    if (arg == "--version") {
+      std::cout << program.name << " " << project_version() << " (protocol " << version_string() << ")\n";
+      return 0;
+    }
+    if (arg == "--bind") options.bind = value();
+    else if (arg == "--idle-timeout") options.idle_timeout_s = std::stod(value());
+    else if (arg == "--max-array-bytes") options.limits.max_array_bytes = std::stoull(value());
+    else throw UserError("unknown option '" + std::string(arg) + "'; see " + program.name + " --help");
+  }
+  return std::nullopt;
+}
+
+int serve(const ServerProgram& program, const ServerOptions& options) {
+  const auto backend = program.make_backend();
+  ServerSession session(*backend, options.limits);
+  zmq::context_t context(1);
+  zmq::socket_t socket(context, zmq::socket_type::router);
+  configure_socket(socket, options.limits);
+  socket.bind(options.bind);
+  std::cout << "DFC-LISTENING " << socket.get(zmq::sockopt::last_endpoint) << std::endl;
+
+  const auto poll_slice = std::chrono::milliseconds(500);
+  auto last_message = std::chrono::steady_clock::now();
+  while (!session.closed()) {
+    auto frames = receive_frames(socket, poll_slice);
+    if (!frames) {
+      const double idle = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_message).count();
+      if (options.idle_timeout_s > 0 && idle > options.idle_timeout_s) {
+        std::cerr << program.name << ": no message for " << options.idle_timeout_s << " s (--idle-timeout); exiting\n";
+        return 3;
+      }
+      continue;
+    }
+    last_message = std::chrono::steady_clock::now();
+    if (frames->size() < 2) continue;  // a ROUTER message is [routing id, frames...]; nothing to answer
+    const zmq::message_t& routing_id = frames->front();
+    const auto views = frame_views(*frames, 1);
+    Message reply;
+    try {
+      reply = session.handle(decode(views, options.limits));
+    } catch (const DecodeError& e) {
+      reply = make_error(e.seq(), e.code(), e.what());
+    }
+    send_message(socket, reply, &routing_id);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_server_main(int argc, char** argv, const ServerProgram& program) {
+  try {
+    ServerOptions options;
+    if (const auto status = parse_options(argc, argv, program, options)) return *status;
+    return serve(program, options);
+  } catch (const UserError& e) {
+    std::cerr << program.name << ": " << e.what() << "\n";
+    return 2;
+  } catch (const zmq::error_t& e) {
+    std::cerr << program.name << ": ZeroMQ error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << program.name << ": " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace dfc::protocol
