@@ -26,7 +26,14 @@ void send_message(zmq::socket_t& socket, const Message& message, const zmq::mess
 
 std::optional<std::vector<zmq::message_t>> receive_frames(zmq::socket_t& socket, std::chrono::milliseconds timeout) {
   zmq::pollitem_t item{socket.handle(), 0, ZMQ_POLLIN, 0};
-  if (zmq::poll(&item, 1, timeout) == 0) return std::nullopt;
+  try {
+    if (zmq::poll(&item, 1, timeout) == 0) return std::nullopt;
+  } catch (const zmq::error_t& e) {
+    // A signal (Ctrl-C) interrupted the wait: report "nothing yet" so the
+    // caller's loop can look at its stop flag and deadline.
+    if (e.num() == EINTR) return std::nullopt;
+    throw;
+  }
   std::vector<zmq::message_t> frames;
   // A multipart message is delivered atomically (all parts or none), so once
   // the first part is readable the rest are already here.

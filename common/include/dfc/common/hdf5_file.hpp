@@ -117,11 +117,14 @@ class Group {
 /// One open HDF5 file.
 class File {
  public:
-  /// Creates `path`, truncating an existing file. Throws UserError naming the
-  /// path when it cannot be created (missing directory, no permission, held open).
+  /// Creates `path`, truncating an existing file. The file is not locked, so
+  /// other programs can read it while it is written (what they see is what was
+  /// last flushed); keeping two writers off one path is the caller's job.
+  /// Throws UserError naming the path when it cannot be created (missing
+  /// directory, no permission, held open by this process).
   [[nodiscard]] static File create(const std::filesystem::path& path);
-  /// Opens `path` read-only without taking the file lock, so that a file another
-  /// process is still writing can be read (what was flushed is what is seen).
+  /// Opens `path` read-only without taking the file lock, so that a file still
+  /// being written, by this or another process, can be read (what was flushed is what is seen).
   /// Throws UserError naming the path when it is missing or not an HDF5 file.
   [[nodiscard]] static File open_read_only(const std::filesystem::path& path);
 

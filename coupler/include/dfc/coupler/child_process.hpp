@@ -1,0 +1,56 @@
+#pragma once
+// ChildProcess: a server started by the coupler (DESIGN §2: the coupler owns
+// the run). stdout is read for the DFC-LISTENING line and then copied to a log
+// file by a small thread; stderr goes straight to a log file so nothing a
+// crashing server printed is lost, and its tail can be quoted in the error.
+#include <sys/types.h>
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace dfc::coupler {
+
+class ChildProcess {
+ public:
+  /// Starts `executable args...` with stdout to a pipe and stderr to `stderr_log`.
+  /// The child gets SIGKILL if the coupler dies (PR_SET_PDEATHSIG).
+  ChildProcess(const std::filesystem::path& executable, const std::vector<std::string>& args, const std::filesystem::path& stderr_log,
+               const std::filesystem::path& stdout_log);
+  ~ChildProcess();
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  /// Waits for the line "DFC-LISTENING <endpoint>" on stdout; returns the
+  /// endpoint. Throws dfc::UserError if the process exits or prints nothing in time.
+  std::string wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label);
+
+  /// nullopt while running; otherwise a description ("exited with status 3",
+  /// "was killed by signal 9 (Killed)"). Reaps the child.
+  std::optional<std::string> exit_description();
+  /// Waits up to `timeout` for the process to exit by itself; true if it did.
+  bool wait_exit(std::chrono::milliseconds timeout);
+  /// SIGKILL and reap (no-op if already gone).
+  void kill();
+
+  /// The last `lines` lines of its stderr log.
+  [[nodiscard]] std::string stderr_tail(std::size_t lines) const;
+  [[nodiscard]] pid_t pid() const noexcept { return pid_; }
+  [[nodiscard]] const std::filesystem::path& stderr_log() const noexcept { return stderr_log_; }
+
+ private:
+  void start_stdout_copier();
+
+  pid_t pid_ = -1;
+  int stdout_fd_ = -1;
+  std::optional<int> exit_status_;  ///< raw waitpid status once reaped
+  std::filesystem::path stderr_log_;
+  std::filesystem::path stdout_log_;
+  std::string stdout_buffer_;
+  std::thread stdout_copier_;
+};
+
+}  // namespace dfc::coupler

@@ -1,0 +1,87 @@
+#pragma once
+// ResultsWriter: the one HDF5 file a run produces (DESIGN §8), plus its XDMF
+// sidecar for ParaView.
+//
+// Layout ("format" = "dfc-results-1"):
+//   /                      attributes scenario, versions (JSON text), created_utc, format, and any set_attribute()
+//   /timeseries/<column>   1-D f64, extendable and chunked; attribute "unit"; the group's
+//                          attribute "columns" lists the column order as a JSON array
+//   /snapshots/<role>/<NNNNNN>/<array>
+//                          one group per snapshot (attributes step, time, kind), one dataset
+//                          per array with the array's dtype and shape
+//
+// Rows are buffered and written in blocks (one HDF5 extend per block, not per
+// row); flush() writes them and flushes the file, after which another process
+// can open it read-only (h5::File::open_read_only, or h5py with
+// HDF5_USE_FILE_LOCKING=FALSE). close() also writes the sidecar; the
+// destructor closes without throwing.
+//
+//   ResultsWriter out("run.h5", scenario, versions);
+//   out.declare_series({"time_s", "pile_force_n"}, {{"time_s", "s"}, {"pile_force_n", "N"}});
+//   out.append({0.0, 12.5});
+//   out.write_snapshot("dem", step, time, "particles", arrays);
+//   out.set_attribute("summary", summary.dump());
+//   out.close();
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dfc/protocol/array.hpp"
+
+namespace dfc::coupler {
+
+class ResultsWriter {
+ public:
+  /// Value of the root attribute "format".
+  static constexpr const char* format_name = "dfc-results-1";
+
+  /// Creates (truncates) `path` and writes the root attributes. Throws
+  /// dfc::UserError naming the path when it cannot be created.
+  ResultsWriter(std::filesystem::path path, const nlohmann::json& scenario, const nlohmann::json& versions);
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+  ResultsWriter(ResultsWriter&&) noexcept;
+  ResultsWriter& operator=(ResultsWriter&&) noexcept;
+
+  /// Fixes the time-series columns (once). Names must be unique, non-empty and
+  /// free of '/'; `units` may give a unit for any of them (stored as attribute "unit")
+  /// and must not name unknown columns. Throws std::invalid_argument / std::logic_error.
+  void declare_series(const std::vector<std::string>& columns, const std::map<std::string, std::string>& units);
+  /// Appends one row; its size must equal the column count (std::invalid_argument otherwise).
+  void append(const std::vector<double>& row);
+  /// Number of rows appended so far (written or still buffered).
+  [[nodiscard]] std::int64_t row_count() const noexcept;
+
+  /// Stores `arrays` as /snapshots/<role>/<next 6-digit index>/ with attributes
+  /// step, time and kind. Array names must be unique and free of '/', and each
+  /// array's byte count must match its dtype and shape (std::invalid_argument).
+  void write_snapshot(const std::string& role, std::int64_t step, double time, const std::string& kind,
+                      std::span<const dfc::protocol::Array> arrays);
+
+  /// Root attribute `name` holding JSON text (e.g. "summary"); replaces an earlier value.
+  void set_attribute(const std::string& name, const std::string& json_text);
+
+  /// Writes buffered rows, brings the sidecar up to date and flushes the file to disk.
+  void flush();
+  /// flush(), write the XDMF sidecar, close the file. Idempotent; later writes throw std::logic_error.
+  void close();
+  [[nodiscard]] bool is_open() const noexcept;
+
+  [[nodiscard]] const std::filesystem::path& path() const noexcept;
+  /// `path` with its extension replaced by ".xdmf".
+  [[nodiscard]] std::filesystem::path xdmf_path() const;
+
+ private:
+  struct State;
+  State& open_state(const char* operation) const;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace dfc::coupler

@@ -1,0 +1,71 @@
+#pragma once
+// Scenario: the declarative JSON that describes one run (DESIGN §7).
+//
+// The coupler validates the top level itself; each participant's "config"
+// section is validated by the server that receives it (protocol `configure`,
+// BAD_CONFIG names the key path, the coupler prefixes the section's path), so
+// a third-party server validates its own section with no coupler change.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace dfc::coupler {
+
+inline constexpr int kScenarioSchemaVersion = 1;
+
+/// One solver process the coupler talks to. The slot decides the role:
+/// "dem" is the side driven by interface velocities (accepts_interface),
+/// "continuum" the side that provides the interface (provides_interface).
+struct ParticipantSpec {
+  std::string slot;                       ///< "dem" or "continuum"
+  std::string program;                    ///< as written in the scenario
+  std::filesystem::path executable;       ///< resolved path (empty when connecting to an endpoint)
+  std::vector<std::string> args;          ///< extra command-line arguments
+  std::string endpoint;                   ///< connect here instead of starting a process
+  nlohmann::json config;                  ///< the section sent in `configure` (gravity injected)
+  [[nodiscard]] std::string key_path() const { return "participants." + slot; }
+};
+
+struct CouplingSpec {
+  std::int64_t exchange_interval = 1;            ///< DEM steps per exchange (k)
+  std::int64_t continuum_steps_per_exchange = 1; ///< continuum steps covering the same time (m)
+  std::optional<double> dt_s;                    ///< DEM (or single participant) step; default: the server's suggestion
+  double force_balance_tolerance = 1e-9;         ///< relative, see SPEC.md §6.3
+};
+
+struct RunSpec {
+  std::int64_t exchanges = 1;    ///< number of exchanges (records) to run
+  double deadline_s = 60.0;      ///< per request (SPEC.md §9)
+  double startup_timeout_s = 20; ///< for a started server to print DFC-LISTENING
+  std::int64_t snapshot_every = 0;  ///< exchanges between snapshots; 0: initial and final only
+};
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::array<double, 3> gravity_m_s2{0.0, 0.0, 0.0};  ///< g · N along the direction
+  double g_level = 1.0;
+  std::vector<ParticipantSpec> participants;  ///< "dem" first if present, then "continuum"
+  CouplingSpec coupling;
+  RunSpec run;
+  std::filesystem::path output_directory;
+  nlohmann::json document;  ///< the whole scenario as read (written to the results)
+  std::filesystem::path source;
+
+  [[nodiscard]] const ParticipantSpec* participant(std::string_view slot) const;
+};
+
+/// Reads and validates `path`. `bin_dir` is where the project's executables
+/// are (bare program names are looked up there first, then on PATH).
+/// Throws dfc::ConfigError (key path + reason) or dfc::UserError.
+[[nodiscard]] Scenario load_scenario(const std::filesystem::path& path, const std::filesystem::path& bin_dir);
+
+/// Same, from an already-parsed document.
+[[nodiscard]] Scenario parse_scenario(const nlohmann::json& document, const std::filesystem::path& source, const std::filesystem::path& bin_dir);
+
+}  // namespace dfc::coupler

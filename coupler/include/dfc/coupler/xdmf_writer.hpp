@@ -1,0 +1,54 @@
+#pragma once
+// XDMF sidecar: the XML that lets ParaView (Xdmf or Xdmf3 reader) open the
+// particle and grid snapshots of a results file directly. The heavy data stay
+// in the HDF5 file; the XDMF only describes them, referring to datasets as
+// "<file>.h5:/snapshots/<role>/<index>/<array>" relative to the sidecar.
+//
+// One temporal collection per role. A "particles" snapshot becomes a
+// Polyvertex grid on particle_position; a "grid" snapshot a Hexahedron grid
+// with Geometry node_position and Topology zone_nodes (VTK hexahedron order,
+// which is also XDMF's). Arrays whose leading dimension is the point count
+// become node attributes, the zone count cell attributes, with Scalar /
+// Vector / Tensor6 / Tensor chosen from the trailing dimension (1, 3, 6, 9);
+// anything else is left out. Snapshots of other kinds, or without geometry,
+// or with no points, are left out.
+//
+// Tensor6 components in XDMF are ordered xx, xy, xz, yy, yz, zz; zone_stress
+// must be written in that order for ParaView's component names to be right.
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dfc/protocol/array.hpp"
+
+namespace dfc::coupler {
+
+/// What the XDMF needs to know of one stored array (not its values).
+struct XdmfArrayInfo {
+  std::string name;
+  protocol::DType dtype = protocol::DType::f64;
+  std::vector<std::int64_t> shape;
+};
+
+/// One stored snapshot: where it lives in the HDF5 file and what it holds.
+struct XdmfSnapshot {
+  std::string role;
+  std::string group_path;  ///< absolute HDF5 path of the snapshot group, e.g. "/snapshots/dem/000003"
+  std::int64_t step = 0;
+  double time = 0.0;
+  std::string kind;  ///< "particles" or "grid"; other kinds are not described
+  std::vector<XdmfArrayInfo> arrays;
+};
+
+/// The XDMF document for `snapshots`, referring to the HDF5 file by `h5_file_name`
+/// (a path relative to the sidecar, normally just the file name).
+[[nodiscard]] std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots);
+
+/// Writes xdmf_document() to `xdmf_path` atomically (temporary file, then rename),
+/// so a reader never sees half a sidecar. Throws dfc::UserError naming the path
+/// when it cannot be written.
+void write_xdmf(const std::filesystem::path& xdmf_path, const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots);
+
+}  // namespace dfc::coupler

@@ -1,0 +1,438 @@
+#include "dfc/coupler/coupled_run.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <iostream>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <sstream>
+
+#include <zmq.hpp>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/common/version.hpp"
+#include "dfc/coupler/progress_line.hpp"
+#include "dfc/coupler/results_writer.hpp"
+#include "dfc/protocol/message.hpp"
+
+namespace dfc::coupler {
+
+namespace {
+
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+milliseconds to_ms(double seconds) { return milliseconds(static_cast<long long>(seconds * 1000.0)); }
+
+double scalar_monitor(const nlohmann::json& monitors, const char* name) {
+  const auto it = monitors.find(name);
+  return it != monitors.end() && it->is_number() ? it->get<double>() : kNaN;
+}
+
+std::array<double, 3> vector_monitor(const nlohmann::json& monitors, const char* name) {
+  const auto it = monitors.find(name);
+  if (it == monitors.end() || !it->is_array() || it->size() != 3) return {kNaN, kNaN, kNaN};
+  return {(*it)[0].get<double>(), (*it)[1].get<double>(), (*it)[2].get<double>()};
+}
+
+std::optional<double> info_number(const nlohmann::json& info, const char* key) {
+  const auto it = info.find(key);
+  if (it == info.end() || !it->is_number()) return std::nullopt;
+  return it->get<double>();
+}
+
+std::string format_vector(const std::array<double, 3>& v) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+  return out.str();
+}
+
+/// Time steps of the run (SPEC.md §5.3): exchange duration T = k·dt_dem = m·dt_continuum.
+struct Timing {
+  std::int64_t dem_steps_per_exchange = 0;
+  std::int64_t continuum_steps_per_exchange = 0;
+  double dt_dem = 0.0;
+  double dt_continuum = 0.0;
+  [[nodiscard]] double exchange_duration() const {
+    return dem_steps_per_exchange > 0 ? double(dem_steps_per_exchange) * dt_dem : double(continuum_steps_per_exchange) * dt_continuum;
+  }
+};
+
+Timing choose_timing(const Scenario& scenario, Participant* dem, Participant* continuum) {
+  Timing timing;
+  const auto& c = scenario.coupling;
+  const auto check_stable = [](Participant& p, double dt, const std::string& key, const std::string& fix) {
+    const auto dt_max = info_number(p.configured_info(), "dt_max");
+    if (dt_max && dt > *dt_max * (1.0 + 1e-12)) {
+      std::ostringstream reason;
+      reason << p.spec().slot << " would run at dt = " << dt << " s but " << p.spec().program << " is stable only up to " << *dt_max
+             << " s; " << fix;
+      throw ConfigError(key, reason.str());
+    }
+  };
+  if (dem != nullptr) {
+    const auto suggested = info_number(dem->configured_info(), "dt_suggested");
+    if (!c.dt_s && !suggested)
+      throw ConfigError("coupling.dt_s", "the dem server suggested no time step; set coupling.dt_s");
+    timing.dt_dem = c.dt_s ? *c.dt_s : *suggested;
+    timing.dem_steps_per_exchange = c.exchange_interval;
+    check_stable(*dem, timing.dt_dem, c.dt_s ? "coupling.dt_s" : "participants.dem.config", "lower coupling.dt_s");
+  }
+  if (continuum != nullptr) {
+    timing.continuum_steps_per_exchange = c.continuum_steps_per_exchange;
+    if (dem != nullptr) {
+      timing.dt_continuum = timing.exchange_duration() / double(timing.continuum_steps_per_exchange);
+    } else {
+      const auto suggested = info_number(continuum->configured_info(), "dt_suggested");
+      if (!c.dt_s && !suggested) throw ConfigError("coupling.dt_s", "the continuum server suggested no time step; set coupling.dt_s");
+      timing.dt_continuum = c.dt_s ? *c.dt_s : *suggested;
+    }
+    const auto dt_max = info_number(continuum->configured_info(), "dt_max");
+    const std::string fix = dt_max ? "raise coupling.continuum_steps_per_exchange to at least " +
+                                         std::to_string(static_cast<long long>(std::ceil(timing.exchange_duration() / *dt_max))) +
+                                         " or enable the continuum's mass scaling"
+                                   : "";
+    check_stable(*continuum, timing.dt_continuum, "coupling.continuum_steps_per_exchange", fix);
+  }
+  return timing;
+}
+
+/// Starts and greets the participants; configures them; throws on the first problem.
+std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& context, const Scenario& scenario, const fs::path& log_dir) {
+  std::vector<std::unique_ptr<Participant>> participants;
+  for (const auto& spec : scenario.participants) {
+    participants.push_back(std::make_unique<Participant>(context, spec, log_dir, to_ms(scenario.run.startup_timeout_s)));
+    participants.back()->hello(milliseconds(10'000));
+  }
+  const bool coupled = participants.size() == 2;
+  for (auto& p : participants) {
+    const auto& hello = p->info();
+    if (coupled) {
+      const char* needed = p->spec().slot == "dem" ? protocol::capability::accepts_interface : protocol::capability::provides_interface;
+      if (!hello.has(needed))
+        throw ConfigError(p->spec().key_path() + ".program", "'" + p->spec().program + "' (" + hello.solver_name + ") lacks capability '" +
+                                                                 needed + "' that the " + p->spec().slot + " slot of a coupled run needs");
+    }
+    p->configure(to_ms(scenario.run.deadline_s));
+  }
+  return participants;
+}
+
+class RunRecorder {
+ public:
+  RunRecorder(ResultsWriter& writer) : writer_(writer) {}
+
+  void record(const std::map<std::string, double>& fixed, const std::map<std::string, nlohmann::json>& monitors_by_slot) {
+    std::map<std::string, double> row = fixed;
+    for (const auto& [slot, monitors] : monitors_by_slot)
+      for (const auto& [name, value] : monitors.items())
+        if (value.is_number()) row[slot + "_" + name] = value.get<double>();
+    if (columns_.empty()) {
+      for (const auto& [name, value] : row) columns_.push_back(name);
+      writer_.declare_series(columns_, units_for(columns_));
+    }
+    std::vector<double> values;
+    values.reserve(columns_.size());
+    for (const auto& name : columns_) {
+      const auto it = row.find(name);
+      values.push_back(it == row.end() ? kNaN : it->second);
+    }
+    writer_.append(values);
+  }
+
+ private:
+  static std::map<std::string, std::string> units_for(const std::vector<std::string>& columns) {
+    std::map<std::string, std::string> units;
+    for (const auto& name : columns) {
+      const auto ends = [&](const char* suffix) {
+        const std::string s(suffix);
+        return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+      };
+      if (ends("_s")) units[name] = "s";
+      else if (ends("_m")) units[name] = "m";
+      else if (ends("_n") || ends("_x") || ends("_y") || ends("_z")) units[name] = "N";
+      else if (ends("_w")) units[name] = "W";
+      else if (ends("_j")) units[name] = "J";
+      else units[name] = "1";
+    }
+    return units;
+  }
+
+  ResultsWriter& writer_;
+  std::vector<std::string> columns_;
+};
+
+void write_snapshots(ResultsWriter& writer, std::vector<std::unique_ptr<Participant>>& participants, double time, milliseconds deadline) {
+  for (auto& p : participants) {
+    if (!p->info().has(protocol::capability::snapshot)) continue;
+    protocol::Message reply;
+    try {
+      reply = p->client().snapshot(deadline);
+    } catch (const std::exception& e) {
+      p->fail(e, "taking a snapshot");
+    }
+    writer.write_snapshot(p->spec().slot, reply.step.value_or(0), time, reply.body.value("kind", "unknown"), reply.arrays);
+  }
+}
+
+}  // namespace
+
+void check_scenario(const Scenario& scenario, std::ostream& log) {
+  const fs::path log_dir = fs::temp_directory_path() / ("dfc-check-" + std::to_string(::getpid()));
+  fs::create_directories(log_dir);
+  zmq::context_t context(1);
+  std::vector<std::unique_ptr<Participant>> participants;
+  try {
+    participants = start_participants(context, scenario, log_dir);
+    Participant* dem = nullptr;
+    Participant* continuum = nullptr;
+    for (auto& p : participants) (p->spec().slot == "dem" ? dem : continuum) = p.get();
+    const Timing timing = choose_timing(scenario, dem, continuum);
+    for (auto& p : participants)
+      log << "  " << p->spec().slot << ": " << p->info().solver_name << " " << p->info().solver_version << " accepted its section\n";
+    log << "  exchange: " << timing.dem_steps_per_exchange << " DEM step(s) of " << timing.dt_dem << " s, "
+        << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s\n";
+  } catch (...) {
+    for (auto& p : participants) p->stop();
+    fs::remove_all(log_dir);
+    throw;
+  }
+  for (auto& p : participants) p->stop();
+  fs::remove_all(log_dir);
+}
+
+int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostream& log) {
+  const fs::path out_dir = options.output_directory.empty() ? scenario.output_directory : options.output_directory;
+  const fs::path log_dir = out_dir / "logs";
+  std::error_code ec;
+  fs::create_directories(log_dir, ec);
+  if (ec) throw UserError("cannot create the output folder '" + log_dir.string() + "': " + ec.message() + "; choose another with --out");
+  {
+    std::ofstream copy(out_dir / "scenario.json");
+    copy << scenario.document.dump(2) << "\n";
+  }
+
+  zmq::context_t context(1);
+  std::vector<std::unique_ptr<Participant>> participants;
+  const auto stop_all = [&] {
+    for (auto& p : participants) p->stop();
+  };
+  std::unique_ptr<ResultsWriter> writer;
+  int status = 0;
+  try {
+    // Steps 1–2: start, greet, configure.
+    participants = start_participants(context, scenario, log_dir);
+    Participant* dem = nullptr;
+    Participant* continuum = nullptr;
+    for (auto& p : participants) (p->spec().slot == "dem" ? dem : continuum) = p.get();
+    const bool coupled = dem != nullptr && continuum != nullptr;
+    const milliseconds deadline = to_ms(scenario.run.deadline_s);
+
+    // Step 3: the interface mesh goes from the continuum to the DEM (DESIGN §4).
+    protocol::InterfaceMesh interface;
+    if (coupled) {
+      try {
+        interface = continuum->client().get_interface(deadline);
+      } catch (const std::exception& e) {
+        continuum->fail(e, "sending its interface mesh");
+      }
+      try {
+        dem->client().set_interface(interface, deadline);
+      } catch (const std::exception& e) {
+        dem->fail(e, "installing the interface mesh as coupling walls");
+      }
+    }
+    const std::int64_t n_nodes = interface.node_count();
+
+    // Step 4: time steps.
+    const Timing timing = choose_timing(scenario, dem, continuum);
+
+    nlohmann::json versions = {{"coupler", {{"name", "coupler"}, {"version", std::string(project_version())}}},
+                               {"protocol", protocol::version_string()}};
+    for (auto& p : participants)
+      versions[p->spec().slot] = {{"name", p->info().solver_name},
+                                  {"version", p->info().solver_version},
+                                  {"protocol", p->info().protocol_version},
+                                  {"configured", p->configured_info()}};
+    writer = std::make_unique<ResultsWriter>(out_dir / "results.h5", scenario.document, versions);
+    RunRecorder recorder(*writer);
+    write_snapshots(*writer, participants, 0.0, deadline);
+    writer->flush();
+
+    log << "Run '" << scenario.name << "': " << scenario.run.exchanges << " exchanges";
+    if (dem) log << ", " << timing.dem_steps_per_exchange << " DEM step(s) of " << timing.dt_dem << " s";
+    if (continuum) log << ", " << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s";
+    if (coupled) log << ", " << n_nodes << " interface nodes";
+    log << " each.\n";
+
+    // Step 5: the exchanges.
+    std::vector<double> velocity(std::size_t(n_nodes) * 3, 0.0);
+    std::int64_t dem_step = 0;
+    std::int64_t continuum_step = 0;
+    double worst_balance = 0.0;
+    double peak_pile_force = kNaN;
+    ProgressLine progress(std::cerr, scenario.name, scenario.run.exchanges, options.progress);
+    const auto wall_start = std::chrono::steady_clock::now();
+    auto last_flush = wall_start;
+    std::int64_t done = 0;
+    std::map<std::string, nlohmann::json> monitors;
+    for (std::int64_t exchange = 0; exchange < scenario.run.exchanges; ++exchange) {
+      if (options.stop_requested != nullptr && options.stop_requested->load()) {
+        status = 130;
+        break;
+      }
+      std::vector<protocol::Array> to_continuum;
+      if (dem != nullptr) {
+        std::vector<protocol::Array> inputs;
+        if (coupled) inputs.push_back(protocol::Array::from_f64(protocol::field::velocity, {n_nodes, 3}, velocity));
+        protocol::Message reply;
+        try {
+          reply = dem->client().advance(dem_step, timing.dem_steps_per_exchange, timing.dt_dem, std::move(inputs), deadline);
+          if (coupled) {
+            to_continuum.push_back(protocol::Array::from_f64(protocol::field::force, {n_nodes, 3},
+                                                             protocol::require_f64(reply.arrays, protocol::field::force, n_nodes, 3)));
+            // A driven continuum also lends its interface mass (SPEC.md §6.1).
+            if (protocol::find_array(reply.arrays, protocol::field::mass) != nullptr)
+              to_continuum.push_back(protocol::Array::from_f64(protocol::field::mass, {n_nodes},
+                                                               protocol::require_f64(reply.arrays, protocol::field::mass, n_nodes, 0)));
+          }
+        } catch (const std::exception& e) {
+          dem->fail(e, "advancing from step " + std::to_string(dem_step));
+        }
+        dem_step = *reply.step;
+        monitors["dem"] = reply.body.value("monitors", nlohmann::json::object());
+      }
+      if (continuum != nullptr) {
+        protocol::Message reply;
+        try {
+          reply = continuum->client().advance(continuum_step, timing.continuum_steps_per_exchange, timing.dt_continuum,
+                                              std::move(to_continuum), deadline);
+          if (coupled) velocity = protocol::require_f64(reply.arrays, protocol::field::velocity, n_nodes, 3);
+        } catch (const std::exception& e) {
+          continuum->fail(e, "advancing from step " + std::to_string(continuum_step));
+        }
+        continuum_step = *reply.step;
+        monitors["continuum"] = reply.body.value("monitors", nlohmann::json::object());
+      }
+
+      // The interface forces must be equal and opposite (DESIGN §4): the reaction
+      // the DEM computed on its particles against what the continuum applied.
+      std::array<double, 3> on_dem{kNaN, kNaN, kNaN};
+      std::array<double, 3> on_continuum{kNaN, kNaN, kNaN};
+      if (coupled) {
+        on_dem = vector_monitor(monitors["dem"], "interface_force_reaction");
+        on_continuum = vector_monitor(monitors["continuum"], "interface_force_received");
+        double mismatch = 0.0;
+        double scale = 0.0;
+        for (std::size_t i = 0; i < 3; ++i) {
+          mismatch = std::max(mismatch, std::abs(on_dem[i] + on_continuum[i]));
+          scale = std::max({scale, std::abs(on_dem[i]), std::abs(on_continuum[i])});
+        }
+        const double relative = scale > 0 ? mismatch / scale : mismatch;
+        if (!std::isfinite(relative) || relative > scenario.coupling.force_balance_tolerance) {
+          std::ostringstream message;
+          message << "interface force balance broken at exchange " << exchange << " (DEM step " << dem_step << "): force on the DEM side "
+                  << format_vector(on_dem) << " N (interface_force_reaction) and on the continuum " << format_vector(on_continuum)
+                  << " N (interface_force_received) are not equal and opposite; relative mismatch " << relative << " > tolerance "
+                  << scenario.coupling.force_balance_tolerance << " (coupling.force_balance_tolerance)";
+          throw ParticipantFailure(message.str());
+        }
+        worst_balance = std::max(worst_balance, relative);
+      }
+
+      const double time = dem != nullptr ? double(dem_step) * timing.dt_dem : double(continuum_step) * timing.dt_continuum;
+      const double pile_force = scalar_monitor(monitors["dem"], "pile_force_n");
+      if (std::isfinite(pile_force) && !(pile_force <= peak_pile_force)) peak_pile_force = pile_force;
+      const std::map<std::string, double> fixed = {
+          {"exchange", double(exchange + 1)},
+          {"step_dem", double(dem_step)},
+          {"step_continuum", double(continuum_step)},
+          {"time_s", time},
+          {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()},
+          {"interface_force_on_dem_x", on_dem[0]},
+          {"interface_force_on_dem_y", on_dem[1]},
+          {"interface_force_on_dem_z", on_dem[2]},
+          {"interface_force_on_continuum_x", on_continuum[0]},
+          {"interface_force_on_continuum_y", on_continuum[1]},
+          {"interface_force_on_continuum_z", on_continuum[2]},
+      };
+      recorder.record(fixed, monitors);
+      ++done;
+      const bool snapshot_due = scenario.run.snapshot_every > 0 && (exchange + 1) % scenario.run.snapshot_every == 0 &&
+                                exchange + 1 < scenario.run.exchanges;
+      if (snapshot_due) write_snapshots(*writer, participants, time, deadline);
+      // Flush at most about once a second: the file stays readable by others
+      // during long runs without an HDF5 flush per exchange. Failures close the
+      // writer, which writes every buffered row.
+      if (snapshot_due || std::chrono::steady_clock::now() - last_flush > std::chrono::seconds(1)) {
+        writer->flush();
+        last_flush = std::chrono::steady_clock::now();
+      }
+
+      std::ostringstream detail;
+      detail.precision(3);
+      detail << "t=" << time << " s";
+      if (std::isfinite(pile_force))
+        detail << " pile " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, " << pile_force << " N";
+      progress.update(done, detail.str());
+    }
+    progress.finish();
+
+    // Step 6: final snapshot and summary.
+    const double end_time = dem != nullptr ? double(dem_step) * timing.dt_dem : double(continuum_step) * timing.dt_continuum;
+    write_snapshots(*writer, participants, end_time, deadline);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    nlohmann::json summary = {{"exchanges_completed", done},
+                              {"dem_steps", dem_step},
+                              {"continuum_steps", continuum_step},
+                              {"end_time_s", end_time},
+                              {"wall_time_s", wall},
+                              {"max_relative_force_mismatch", worst_balance},
+                              {"stopped_by_signal", status == 130}};
+    writer->set_attribute("summary", summary.dump());
+    writer->close();
+    stop_all();
+
+    std::ostringstream text;
+    text.precision(4);
+    text << (status == 130 ? "Run '" + scenario.name + "' was stopped after " : "Run '" + scenario.name + "' finished: ") << done
+         << " exchanges";
+    if (dem) text << " (" << dem_step << " DEM steps";
+    if (continuum) text << (dem ? ", " : " (") << continuum_step << " continuum steps";
+    text << ", t = " << end_time << " s) in " << format_duration(wall) << ".";
+    if (std::isfinite(peak_pile_force))
+      text << " Pile penetration " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, final pile force "
+           << scalar_monitor(monitors["dem"], "pile_force_n") << " N (peak " << peak_pile_force << " N).";
+    if (coupled) text << " The interface forces balanced at every exchange (worst relative mismatch " << worst_balance << ").";
+    text << "\nResults: " << (out_dir / "results.h5").string() << " (time series and snapshots), " << writer->xdmf_path().string()
+         << " (open in ParaView), server logs in " << log_dir.string() << ".\nPlots: tools/plot_results.py " << (out_dir / "results.h5").string()
+         << "\n";
+    log << text.str();
+    return status;
+  } catch (const ParticipantFailure& failure) {
+    if (writer) {
+      try {
+        writer->set_attribute("failure", nlohmann::json(std::string(failure.what())).dump());
+        writer->close();
+      } catch (...) {
+        // keep the original failure as the message
+      }
+    }
+    stop_all();
+    log << "coupler: run '" << scenario.name << "' stopped: " << failure.what() << "\n";
+    if (writer) log << "Results up to the failure are in " << (out_dir / "results.h5").string() << "\n";
+    return 1;
+  } catch (...) {
+    if (writer) writer->close();
+    stop_all();
+    throw;
+  }
+}
+
+}  // namespace dfc::coupler

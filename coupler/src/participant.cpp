@@ -1,0 +1,85 @@
+#include "dfc/coupler/participant.hpp"
+
+#include "dfc/common/errors.hpp"
+
+namespace dfc::coupler {
+
+Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
+                         std::chrono::milliseconds startup_timeout)
+    : spec_(spec) {
+  std::string endpoint = spec.endpoint;
+  if (endpoint.empty()) {
+    std::vector<std::string> args = spec.args;
+    args.insert(args.end(), {"--bind", "tcp://127.0.0.1:*"});
+    process_ = std::make_unique<ChildProcess>(spec.executable, args, log_dir / (spec.slot + ".stderr.log"),
+                                              log_dir / (spec.slot + ".stdout.log"));
+    endpoint = process_->wait_for_endpoint(startup_timeout, spec.slot + " server '" + spec.program + "'");
+  }
+  client_ = std::make_unique<protocol::SolverClient>(context, endpoint, label());
+  client_->connection().set_wait_hook([this] { check_alive(); });
+}
+
+std::string Participant::label() const {
+  std::string text = spec_.slot + " (";
+  text += spec_.endpoint.empty() ? spec_.program : spec_.endpoint;
+  if (process_) text += ", pid " + std::to_string(process_->pid());
+  return text + ")";
+}
+
+void Participant::check_alive() {
+  if (!process_) return;
+  if (const auto exited = process_->exit_description())
+    throw ParticipantFailure("server " + label() + " " + *exited + ". Last lines of its stderr (" + process_->stderr_log().string() +
+                             "):\n" + process_->stderr_tail(15));
+}
+
+void Participant::fail(const std::exception& error, const std::string& doing) {
+  if (const auto* failure = dynamic_cast<const ParticipantFailure*>(&error)) throw *failure;
+  if (const auto* config = dynamic_cast<const ConfigError*>(&error)) throw *config;
+  std::string message = "server " + label() + " failed while " + doing + ": " + error.what();
+  if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr)
+    message = "server " + label() + " did not answer while " + doing + " (" + error.what() +
+              "); it is hung or too slow: raise run.deadline_s if it is only slow";
+  if (const auto* remote = dynamic_cast<const protocol::RemoteError*>(&error))
+    message = "server " + label() + " refused while " + doing + ": [" + remote->code() + "] " + remote->what();
+  if (process_) {
+    message += "\n  Last lines of its stderr (" + process_->stderr_log().string() + "):\n" + process_->stderr_tail(15);
+  }
+  throw ParticipantFailure(message);
+}
+
+void Participant::hello(std::chrono::milliseconds deadline) {
+  try {
+    hello_ = client_->hello("coupler", deadline);
+  } catch (const std::exception& e) {
+    fail(e, "greeting it (hello)");
+  }
+}
+
+nlohmann::json Participant::configure(std::chrono::milliseconds deadline) {
+  const std::string section = spec_.config.dump();
+  try {
+    configured_info_ = client_->configure(section, deadline).value("info", nlohmann::json::object());
+    return configured_info_;
+  } catch (const protocol::RemoteError& e) {
+    if (e.code() == "BAD_CONFIG") {
+      std::string reason = e.what();
+      if (!e.key().empty() && reason.rfind(e.key() + ": ", 0) == 0) reason.erase(0, e.key().size() + 2);
+      throw ConfigError(spec_.key_path() + ".config" + (e.key().empty() ? "" : "." + e.key()), reason + " (reported by " + spec_.program + ")");
+    }
+    fail(e, "configuring it");
+  } catch (const std::exception& e) {
+    fail(e, "configuring it");
+  }
+}
+
+void Participant::stop() noexcept {
+  try {
+    if (!process_ || !process_->exit_description()) client_->shutdown(std::chrono::milliseconds(2000));
+  } catch (...) {
+    // It may already be gone; killing below is the fallback.
+  }
+  if (process_ && !process_->wait_exit(std::chrono::milliseconds(3000))) process_->kill();
+}
+
+}  // namespace dfc::coupler

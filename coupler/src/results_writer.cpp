@@ -1,0 +1,278 @@
+#include "dfc/coupler/results_writer.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <exception>
+#include <iostream>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/common/hdf5_file.hpp"
+#include "dfc/coupler/xdmf_writer.hpp"
+
+namespace dfc::coupler {
+
+namespace {
+
+// Rows are written in blocks of this many: one extend + write per column per
+// block instead of per row, which matters when a run records every step.
+constexpr std::size_t rows_per_block = 256;
+// Chunk length of the time-series datasets (8 KiB of doubles): big enough for
+// efficient I/O, small enough that a short run's file stays small.
+constexpr hsize_t series_chunk_rows = 1024;
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return buffer;
+}
+
+hid_t native_type(protocol::DType dtype) {
+  switch (dtype) {
+    case protocol::DType::f64: return H5T_NATIVE_DOUBLE;
+    case protocol::DType::f32: return H5T_NATIVE_FLOAT;
+    case protocol::DType::i64: return H5T_NATIVE_INT64;
+    case protocol::DType::i32: return H5T_NATIVE_INT32;
+    case protocol::DType::u8: return H5T_NATIVE_UINT8;
+  }
+  throw std::invalid_argument("unknown array dtype");
+}
+
+std::size_t byte_size(protocol::DType dtype) {
+  switch (dtype) {
+    case protocol::DType::f64:
+    case protocol::DType::i64: return 8;
+    case protocol::DType::f32:
+    case protocol::DType::i32: return 4;
+    case protocol::DType::u8: return 1;
+  }
+  return 0;
+}
+
+// HDF5 link names: '/' separates path components and '.' alone means "this
+// group", so neither can appear in a name we create from caller input.
+void require_plain_name(const std::string& name, const std::string& what) {
+  if (name.empty() || name == "." || name.find('/') != std::string::npos)
+    throw std::invalid_argument(what + " '" + name + "' must be a non-empty name without '/'");
+}
+
+void validate_arrays(std::span<const protocol::Array> arrays) {
+  std::set<std::string> names;
+  for (const protocol::Array& array : arrays) {
+    require_plain_name(array.name, "snapshot array name");
+    if (!names.insert(array.name).second) throw std::invalid_argument("snapshot array '" + array.name + "' appears twice");
+    std::size_t count = 1;
+    for (const std::int64_t d : array.shape) {
+      if (d < 0) throw std::invalid_argument("snapshot array '" + array.name + "' has a negative dimension");
+      count *= static_cast<std::size_t>(d);
+    }
+    if (array.bytes.size() != count * byte_size(array.dtype))
+      throw std::invalid_argument("snapshot array '" + array.name + "' holds " + std::to_string(array.bytes.size()) +
+                                  " bytes but its dtype and shape need " + std::to_string(count * byte_size(array.dtype)));
+  }
+}
+
+std::string six_digits(std::int64_t index) {
+  char buffer[24];
+  std::snprintf(buffer, sizeof buffer, "%06lld", static_cast<long long>(index));
+  return buffer;
+}
+
+}  // namespace
+
+struct ResultsWriter::State {
+  State(std::filesystem::path p, h5::File f) : path(std::move(p)), file(std::move(f)) {}
+
+  std::filesystem::path path;
+  h5::File file;
+  bool closed = false;
+
+  // Time series.
+  bool declared = false;
+  std::vector<std::string> columns;
+  std::vector<h5::Dataset> column_datasets;
+  std::vector<std::vector<double>> pending;  ///< per column, rows not yet written
+  std::int64_t rows = 0;
+
+  // Snapshots: per-role counter, and the catalogue the sidecar is written from
+  // (kept in memory so the sidecar never has to read the file back).
+  std::map<std::string, std::int64_t> snapshot_count;
+  std::vector<XdmfSnapshot> catalogue;
+  bool sidecar_stale = true;
+
+  void write_pending_rows() {
+    if (pending.empty() || pending.front().empty()) return;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      column_datasets[c].append_f64(pending[c]);
+      pending[c].clear();
+    }
+  }
+
+  void write_sidecar(const std::filesystem::path& xdmf) {
+    if (!sidecar_stale) return;
+    write_xdmf(xdmf, path.filename().string(), catalogue);
+    sidecar_stale = false;
+  }
+};
+
+ResultsWriter::ResultsWriter(std::filesystem::path path, const nlohmann::json& scenario, const nlohmann::json& versions) {
+  if (path.extension() == ".xdmf")
+    throw UserError("results file '" + path.string() + "' must not end in .xdmf: that name is taken by its XDMF sidecar; use .h5.");
+  h5::File file = h5::File::create(path);
+  state_ = std::make_unique<State>(std::move(path), std::move(file));
+  const h5::Group root = state_->file.root();
+  h5::write_attribute(root.id(), "scenario", scenario.dump(2));
+  h5::write_attribute(root.id(), "versions", versions.dump(2));
+  h5::write_attribute(root.id(), "created_utc", utc_now_iso8601());
+  h5::write_attribute(root.id(), "format", format_name);
+  (void)root.create_group("snapshots");
+}
+
+ResultsWriter::~ResultsWriter() {
+  try {
+    close();
+  } catch (const std::exception& e) {
+    // A destructor must not throw; the caller who cares calls close() and sees the error.
+    std::cerr << "warning: results file " << (state_ ? state_->path.string() : std::string("?"))
+              << " was not closed cleanly: " << e.what() << '\n';
+  }
+}
+
+ResultsWriter::ResultsWriter(ResultsWriter&&) noexcept = default;
+
+ResultsWriter& ResultsWriter::operator=(ResultsWriter&& other) noexcept {
+  if (this != &other) {
+    try {
+      close();
+    } catch (const std::exception& e) {
+      std::cerr << "warning: results file " << state_->path.string() << " was not closed cleanly: " << e.what() << '\n';
+    }
+    state_ = std::move(other.state_);
+  }
+  return *this;
+}
+
+ResultsWriter::State& ResultsWriter::open_state(const char* operation) const {
+  if (!state_) throw std::logic_error(std::string("ResultsWriter::") + operation + " called on a moved-from writer");
+  if (state_->closed)
+    throw std::logic_error(std::string("ResultsWriter::") + operation + " called after close() of " + state_->path.string());
+  return *state_;
+}
+
+void ResultsWriter::declare_series(const std::vector<std::string>& columns, const std::map<std::string, std::string>& units) {
+  State& s = open_state("declare_series");
+  if (s.declared) throw std::logic_error("ResultsWriter::declare_series called twice; the column set is fixed once per run");
+  if (columns.empty()) throw std::invalid_argument("ResultsWriter::declare_series needs at least one column");
+  std::set<std::string> seen;
+  for (const std::string& column : columns) {
+    require_plain_name(column, "time-series column");
+    if (!seen.insert(column).second) throw std::invalid_argument("time-series column '" + column + "' is declared twice");
+  }
+  for (const auto& [column, unit] : units) {
+    if (!seen.contains(column)) throw std::invalid_argument("unit given for undeclared time-series column '" + column + "'");
+  }
+
+  const h5::Group group = s.file.root().create_group("timeseries");
+  // HDF5 lists members by name; the declared order is kept here for readers that want it.
+  h5::write_attribute(group.id(), "columns", nlohmann::json(columns).dump());
+  for (const std::string& column : columns) {
+    h5::Dataset dataset = group.create_extendable_f64(column, series_chunk_rows);
+    if (const auto unit = units.find(column); unit != units.end()) h5::write_attribute(dataset.id(), "unit", unit->second);
+    s.column_datasets.push_back(std::move(dataset));
+  }
+  s.columns = columns;
+  s.pending.assign(columns.size(), {});
+  for (std::vector<double>& buffer : s.pending) buffer.reserve(rows_per_block);
+  s.declared = true;
+}
+
+void ResultsWriter::append(const std::vector<double>& row) {
+  State& s = open_state("append");
+  if (!s.declared) throw std::logic_error("ResultsWriter::append called before declare_series");
+  if (row.size() != s.columns.size())
+    throw std::invalid_argument("ResultsWriter::append: row has " + std::to_string(row.size()) + " values but " +
+                                std::to_string(s.columns.size()) + " columns were declared");
+  for (std::size_t c = 0; c < row.size(); ++c) s.pending[c].push_back(row[c]);
+  ++s.rows;
+  if (s.pending.front().size() >= rows_per_block) s.write_pending_rows();
+}
+
+std::int64_t ResultsWriter::row_count() const noexcept { return state_ ? state_->rows : 0; }
+
+void ResultsWriter::write_snapshot(const std::string& role, std::int64_t step, double time, const std::string& kind,
+                                   std::span<const protocol::Array> arrays) {
+  State& s = open_state("write_snapshot");
+  require_plain_name(role, "snapshot role");
+  if (kind.empty()) throw std::invalid_argument("snapshot kind must not be empty");
+  // Check everything before creating the group, so a bad array leaves no half snapshot behind.
+  validate_arrays(arrays);
+
+  const h5::Group snapshots = s.file.root().open_group("snapshots");
+  const h5::Group role_group = snapshots.require_group(role);
+  std::int64_t& index = s.snapshot_count[role];
+  const std::string name = six_digits(index);
+  const h5::Group group = role_group.create_group(name);
+  h5::write_attribute(group.id(), "step", step);
+  h5::write_attribute(group.id(), "time", time);
+  h5::write_attribute(group.id(), "kind", kind);
+
+  XdmfSnapshot entry{role, "/snapshots/" + role + "/" + name, step, time, kind, {}};
+  for (const protocol::Array& array : arrays) {
+    (void)group.write_dataset(array.name, native_type(array.dtype), array.shape, array.bytes);
+    entry.arrays.push_back({array.name, array.dtype, array.shape});
+  }
+  ++index;
+  s.catalogue.push_back(std::move(entry));
+  s.sidecar_stale = true;
+}
+
+void ResultsWriter::set_attribute(const std::string& name, const std::string& json_text) {
+  State& s = open_state("set_attribute");
+  if (name.empty()) throw std::invalid_argument("ResultsWriter::set_attribute needs a name");
+  h5::write_attribute(s.file.root().id(), name, json_text);
+}
+
+void ResultsWriter::flush() {
+  State& s = open_state("flush");
+  s.write_pending_rows();
+  s.file.flush();
+  // Keeping the sidecar current means a run that dies later still opens in ParaView.
+  s.write_sidecar(xdmf_path());
+}
+
+void ResultsWriter::close() {
+  if (!state_ || state_->closed) return;
+  State& s = *state_;
+  s.closed = true;  // whatever fails below, the writer is finished; a second close() is a no-op
+  std::exception_ptr first_error;
+  const auto attempt = [&first_error](auto&& step) {
+    try {
+      step();
+    } catch (...) {
+      if (!first_error) first_error = std::current_exception();
+    }
+  };
+  attempt([&] { s.write_pending_rows(); });
+  attempt([&] { s.file.flush(); });
+  attempt([&] { s.write_sidecar(xdmf_path()); });
+  s.column_datasets.clear();  // datasets must be released before the file for H5Fclose to close it for real
+  attempt([&] { s.file.close(); });
+  if (first_error) std::rethrow_exception(first_error);
+}
+
+bool ResultsWriter::is_open() const noexcept { return state_ && !state_->closed; }
+
+const std::filesystem::path& ResultsWriter::path() const noexcept {
+  static const std::filesystem::path none;
+  return state_ ? state_->path : none;
+}
+
+std::filesystem::path ResultsWriter::xdmf_path() const { return std::filesystem::path(path()).replace_extension(".xdmf"); }
+
+}  // namespace dfc::coupler

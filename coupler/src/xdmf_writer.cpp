@@ -1,0 +1,208 @@
+#include "dfc/coupler/xdmf_writer.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+
+#include "dfc/common/errors.hpp"
+
+namespace dfc::coupler {
+
+namespace {
+
+using protocol::DType;
+
+std::string escape(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// Shortest text that reads back as the same double, so time values survive exactly.
+std::string number_text(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+std::string dimensions_text(const std::vector<std::int64_t>& shape) {
+  std::string out;
+  for (const std::int64_t d : shape) {
+    if (!out.empty()) out += ' ';
+    out += std::to_string(d);
+  }
+  return out;
+}
+
+// XDMF NumberType and Precision of each wire dtype.
+std::pair<const char*, int> number_type(DType dtype) {
+  switch (dtype) {
+    case DType::f64: return {"Float", 8};
+    case DType::f32: return {"Float", 4};
+    case DType::i64: return {"Int", 8};
+    case DType::i32: return {"Int", 4};
+    case DType::u8: return {"UChar", 1};
+  }
+  return {"Float", 8};
+}
+
+bool is_integer(DType dtype) { return dtype == DType::i64 || dtype == DType::i32; }
+
+const XdmfArrayInfo* find(const XdmfSnapshot& snapshot, std::string_view name) {
+  for (const XdmfArrayInfo& array : snapshot.arrays) {
+    if (array.name == name) return &array;
+  }
+  return nullptr;
+}
+
+// Point count of an [n, 3] coordinate array, or nothing when it cannot be geometry.
+std::optional<std::int64_t> point_count(const XdmfArrayInfo* positions) {
+  if (positions == nullptr || positions->shape.size() != 2 || positions->shape[1] != 3 || positions->shape[0] <= 0) return std::nullopt;
+  if (positions->dtype != DType::f64 && positions->dtype != DType::f32) return std::nullopt;
+  return positions->shape[0];
+}
+
+// XDMF AttributeType from the per-entity component count; nothing for shapes ParaView cannot label.
+std::optional<const char*> attribute_type(const XdmfArrayInfo& array) {
+  if (array.shape.size() == 1) return "Scalar";
+  if (array.shape.size() != 2) return std::nullopt;
+  switch (array.shape[1]) {
+    case 1: return "Scalar";
+    case 3: return "Vector";
+    case 6: return "Tensor6";
+    case 9: return "Tensor";
+    default: return std::nullopt;
+  }
+}
+
+class GridWriter {
+ public:
+  GridWriter(std::ostringstream& out, const std::string& h5_file_name) : out_(out), h5_file_name_(h5_file_name) {}
+
+  void data_item(const XdmfSnapshot& snapshot, const XdmfArrayInfo& array, const char* indent) {
+    const auto [type, precision] = number_type(array.dtype);
+    out_ << indent << "<DataItem Dimensions=\"" << dimensions_text(array.shape) << "\" NumberType=\"" << type << "\" Precision=\""
+         << precision << "\" Format=\"HDF\">" << escape(h5_file_name_) << ':' << escape(snapshot.group_path) << '/' << escape(array.name)
+         << "</DataItem>\n";
+  }
+
+  void attribute(const XdmfSnapshot& snapshot, const XdmfArrayInfo& array, const char* center) {
+    const std::optional<const char*> type = attribute_type(array);
+    if (!type) return;
+    out_ << "        <Attribute Name=\"" << escape(array.name) << "\" AttributeType=\"" << *type << "\" Center=\"" << center << "\">\n";
+    data_item(snapshot, array, "          ");
+    out_ << "        </Attribute>\n";
+  }
+
+  // One uniform grid for `snapshot`, or nothing when it has no usable geometry.
+  void grid(const XdmfSnapshot& snapshot) {
+    const bool particles = snapshot.kind == "particles";
+    if (!particles && snapshot.kind != "grid") return;  // e.g. bonds or interface data: not a mesh ParaView can show this way
+    const XdmfArrayInfo* positions = find(snapshot, particles ? "particle_position" : "node_position");
+    const std::optional<std::int64_t> points = point_count(positions);
+    if (!points) return;
+
+    const XdmfArrayInfo* zones = particles ? nullptr : find(snapshot, "zone_nodes");
+    if (zones != nullptr &&
+        (zones->shape.size() != 2 || zones->shape[1] != 8 || zones->shape[0] <= 0 || !is_integer(zones->dtype)))
+      zones = nullptr;  // not a hexahedron connectivity: show the nodes as points instead
+    const std::int64_t cells = zones != nullptr ? zones->shape[0] : 0;
+
+    const std::string index = snapshot.group_path.substr(snapshot.group_path.find_last_of('/') + 1);
+    out_ << "      <Grid Name=\"" << escape(snapshot.role + "_" + index) << "\" GridType=\"Uniform\">\n";
+    out_ << "        <Time Value=\"" << number_text(snapshot.time) << "\"/>\n";
+    if (zones != nullptr) {
+      out_ << "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" << cells << "\">\n";
+      data_item(snapshot, *zones, "          ");
+      out_ << "        </Topology>\n";
+    } else {
+      // Without a connectivity DataItem the readers make one vertex per point.
+      out_ << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << *points << "\" NodesPerElement=\"1\"/>\n";
+    }
+    out_ << "        <Geometry GeometryType=\"XYZ\">\n";
+    data_item(snapshot, *positions, "          ");
+    out_ << "        </Geometry>\n";
+
+    for (const XdmfArrayInfo& array : snapshot.arrays) {
+      if (&array == positions || &array == zones || array.shape.empty()) continue;
+      const std::int64_t leading = array.shape[0];
+      const bool zone_named = array.name.starts_with("zone_");
+      // When node and zone counts coincide the name decides; otherwise the count does.
+      if (zones != nullptr && leading == cells && (leading != *points || zone_named)) {
+        attribute(snapshot, array, "Cell");
+      } else if (leading == *points) {
+        attribute(snapshot, array, "Node");
+      }
+    }
+    out_ << "      </Grid>\n";
+  }
+
+ private:
+  std::ostringstream& out_;
+  const std::string& h5_file_name_;
+};
+
+}  // namespace
+
+std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots) {
+  // Roles in order of first appearance, so the collections follow the run.
+  std::vector<std::string> roles;
+  for (const XdmfSnapshot& snapshot : snapshots) {
+    bool seen = false;
+    for (const std::string& role : roles) seen = seen || role == snapshot.role;
+    if (!seen) roles.push_back(snapshot.role);
+  }
+
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" ?>\n";
+  out << "<Xdmf Version=\"2.0\">\n";
+  out << "  <Domain>\n";
+  for (const std::string& role : roles) {
+    std::ostringstream grids;
+    GridWriter writer(grids, h5_file_name);
+    for (const XdmfSnapshot& snapshot : snapshots) {
+      if (snapshot.role == role) writer.grid(snapshot);
+    }
+    if (grids.str().empty()) continue;  // an empty temporal collection makes readers fail
+    out << "    <Grid Name=\"" << escape(role) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    out << grids.str();
+    out << "    </Grid>\n";
+  }
+  out << "  </Domain>\n";
+  out << "</Xdmf>\n";
+  return out.str();
+}
+
+void write_xdmf(const std::filesystem::path& xdmf_path, const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots) {
+  const std::string text = xdmf_document(h5_file_name, snapshots);
+  std::filesystem::path temporary = xdmf_path;
+  temporary += ".tmp";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file << text;
+    file.flush();
+    if (!file) throw UserError("cannot write XDMF sidecar '" + temporary.string() + "'; check that the directory is writable and not full.");
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, xdmf_path, ec);
+  if (ec) {
+    const std::string reason = ec.message();
+    std::filesystem::remove(temporary, ec);
+    throw UserError("cannot write XDMF sidecar '" + xdmf_path.string() + "' (" + reason + "); check that the directory is writable.");
+  }
+}
+
+}  // namespace dfc::coupler

@@ -1,0 +1,173 @@
+// SPEC.md §5.2, §6: step semantics, refused advances leaving the step
+// unchanged, interface outputs, then query, snapshot and the ordering rules
+// of the running state.
+#include <algorithm>
+
+#include "check.hpp"
+#include "context.hpp"
+#include "expectations.hpp"
+#include "requests.hpp"
+
+namespace dfc::conformance {
+
+namespace protocol = dfc::protocol;
+
+namespace {
+
+/// A refused advance must not have moved the server's step (SPEC.md §5.2).
+void expect_step_unchanged(Context& context) {
+  const protocol::Message reply = context.request(protocol::type::query);
+  expect_type(reply, protocol::type::monitors);
+  expect(reply.step.has_value() && *reply.step == context.step,
+         "after the refused advance, query reports step " + (reply.step ? std::to_string(*reply.step) : "(none)") + " instead of " +
+             std::to_string(context.step));
+}
+
+protocol::Message advance_with_inputs(Context& context, std::int64_t step, std::int64_t n_steps, double dt, std::int64_t extra_rows = 0) {
+  protocol::Message request = advance_request(step, n_steps, dt);
+  request.arrays = zero_inputs(context, extra_rows);
+  return context.request(std::move(request));
+}
+
+void wrong_step_is_step_mismatch(Context& context) {
+  expect_error(advance_with_inputs(context, context.step + 7, 1, context.dt), {"STEP_MISMATCH"});
+  expect_step_unchanged(context);
+}
+
+void zero_steps_is_bad_message(Context& context) {
+  expect_error(advance_with_inputs(context, context.step, 0, context.dt), {"BAD_MESSAGE"});
+  expect_step_unchanged(context);
+}
+
+void negative_dt_is_bad_message(Context& context) {
+  expect_error(advance_with_inputs(context, context.step, 1, -context.dt), {"BAD_MESSAGE"});
+  expect_step_unchanged(context);
+}
+
+void missing_input_is_bad_array(Context& context) {
+  if (!takes_inputs(context)) throw NotApplicable("the server announces no interface capability, so advance takes no inputs");
+  expect_error(context.request(advance_request(context.step, 1, context.dt)), {"BAD_ARRAY"});
+  expect_step_unchanged(context);
+}
+
+void misshapen_input_is_bad_array(Context& context) {
+  if (!takes_inputs(context)) throw NotApplicable("the server announces no interface capability, so advance takes no inputs");
+  const protocol::Message reply = advance_with_inputs(context, context.step, 1, context.dt, 1);
+  expect_error(reply, {"BAD_ARRAY"});
+  const std::string message = reply.body["message"].get<std::string>();
+  const char* name = context.provides_interface ? protocol::field::force : protocol::field::velocity;
+  expect(message.find(name) != std::string::npos, "the BAD_ARRAY message does not name the array '" + std::string(name) + "': \"" + message + "\"");
+  expect_step_unchanged(context);
+}
+
+/// The advanced reply's outputs per SPEC.md §6.1 and its monitors.
+void expect_outputs(const Context& context, const protocol::Message& reply) {
+  if (context.provides_interface) {
+    const std::int64_t n = *context.provided_nodes;
+    expect_array(reply, protocol::field::velocity, protocol::DType::f64, {n, 3});
+    expect_array(reply, protocol::field::displacement, protocol::DType::f64, {n, 3});
+  }
+  if (context.accepts_interface) {
+    const std::int64_t n = *context.accepted_nodes;
+    expect_array(reply, protocol::field::force, protocol::DType::f64, {n, 3});
+    if (protocol::find_array(reply.arrays, protocol::field::mass) != nullptr) expect_array(reply, protocol::field::mass, protocol::DType::f64, {n});
+  }
+  expect(reply.body.contains("monitors"), "'advanced' lacks body.monitors");
+  expect_monitors(reply.body["monitors"], "advanced");
+}
+
+void advance_by(Context& context, std::int64_t n_steps) {
+  const protocol::Message reply = advance_with_inputs(context, context.step, n_steps, context.dt);
+  expect_type(reply, protocol::type::advanced);
+  expect_step(reply, context.step + n_steps);
+  context.step += n_steps;
+  expect_outputs(context, reply);
+}
+
+void one_step(Context& context) { advance_by(context, 1); }
+void two_steps(Context& context) { advance_by(context, 2); }
+
+void query_reports_step_and_monitors(Context& context) {
+  const protocol::Message reply = context.request(protocol::type::query);
+  expect_type(reply, protocol::type::monitors);
+  expect_step(reply, context.step);
+  expect(reply.body.contains("monitors"), "'monitors' lacks body.monitors");
+  expect_monitors(reply.body["monitors"], "monitors");
+}
+
+void expect_index_rows(const protocol::Array& indices, std::int64_t rows) {
+  const auto values = indices.to_i64();
+  expect(std::all_of(values.begin(), values.end(), [rows](std::int64_t v) { return v >= 0 && v < rows; }),
+         "'" + indices.name + "' refers to a row outside 0.." + std::to_string(rows - 1));
+}
+
+void snapshot_matches_capability(Context& context) {
+  const protocol::Message reply = context.request(protocol::type::snapshot);
+  if (!context.snapshot) {
+    expect_error(reply, {"UNSUPPORTED"});
+    return;
+  }
+  expect_type(reply, protocol::type::snapshot_data);
+  expect_step(reply, context.step);
+  const std::string kind = reply.body.value("kind", "");
+  using protocol::DType;
+  if (kind == "particles") {
+    const std::int64_t n = expect_array(reply, "particle_position", DType::f64, {-1, 3}).shape[0];
+    expect_array(reply, "particle_radius", DType::f64, {n});
+    expect_array(reply, "particle_velocity", DType::f64, {n, 3});
+    expect_array(reply, "particle_id", DType::i64, {n});
+    if (protocol::find_array(reply.arrays, "wall_facets") != nullptr) {
+      const std::int64_t k = expect_array(reply, "wall_vertices", DType::f64, {-1, 3}).shape[0];
+      expect_index_rows(expect_array(reply, "wall_facets", DType::i64, {-1, 3}), k);
+    }
+  } else if (kind == "grid") {
+    const std::int64_t n = expect_array(reply, "node_position", DType::f64, {-1, 3}).shape[0];
+    expect_array(reply, "node_displacement", DType::f64, {n, 3});
+    expect_array(reply, "node_velocity", DType::f64, {n, 3});
+    const std::int64_t m = expect_array(reply, "zone_nodes", DType::i64, {-1, 8}).shape[0];
+    expect_index_rows(*protocol::find_array(reply.arrays, "zone_nodes"), n);
+    expect_array(reply, "zone_stress", DType::f64, {m, 6});
+  } else {
+    throw CheckFailure("snapshot_data.kind is '" + kind + "', expected 'particles' or 'grid'");
+  }
+}
+
+void get_interface_when_running_is_out_of_order(Context& context) {
+  const protocol::Message reply = context.request(protocol::type::get_interface);
+  if (context.provides_interface) expect_error(reply, {"OUT_OF_ORDER"});
+  else expect_error(reply, {"OUT_OF_ORDER", "UNSUPPORTED"});
+}
+
+void set_interface_when_running_is_out_of_order(Context& context) {
+  const protocol::Message reply = context.request(test_mesh_request());
+  if (context.accepts_interface) expect_error(reply, {"OUT_OF_ORDER"});
+  else expect_error(reply, {"OUT_OF_ORDER", "UNSUPPORTED"});
+}
+
+}  // namespace
+
+std::vector<Check> advance_checks() {
+  using M = Milestone;
+  return {
+      {"advance.step_mismatch", "advance from the wrong step gets STEP_MISMATCH and the step is unchanged", M::configured, M::none, true,
+       wrong_step_is_step_mismatch},
+      {"advance.zero_steps", "advance with n_steps 0 gets BAD_MESSAGE", M::configured, M::none, true, zero_steps_is_bad_message},
+      {"advance.negative_dt", "advance with dt < 0 gets BAD_MESSAGE", M::configured, M::none, true, negative_dt_is_bad_message},
+      {"advance.missing_input", "advance without its interface input gets BAD_ARRAY", M::configured, M::none, true,
+       missing_input_is_bad_array},
+      {"advance.wrong_input_shape", "an input with n+1 rows gets BAD_ARRAY naming the array", M::configured, M::none, true,
+       misshapen_input_is_bad_array},
+      {"advance.one_step", "advance 1 step from 0 gets advanced at step 1 with outputs of SPEC §6.1", M::configured, M::stepped, true,
+       one_step},
+      {"advance.two_steps", "advance 2 steps from 1 gets advanced at step 3", M::stepped, M::none, true, two_steps},
+      {"running.query", "query gets monitors at the current step", M::configured, M::none, true, query_reports_step_and_monitors},
+      {"running.snapshot", "snapshot gets snapshot_data with a kind and its arrays (snapshot capability), else UNSUPPORTED",
+       M::configured, M::none, true, snapshot_matches_capability},
+      {"running.get_interface_refused", "get_interface after advancing gets OUT_OF_ORDER", M::stepped, M::none, true,
+       get_interface_when_running_is_out_of_order},
+      {"running.set_interface_refused", "set_interface after advancing gets OUT_OF_ORDER", M::stepped, M::none, true,
+       set_interface_when_running_is_out_of_order},
+  };
+}
+
+}  // namespace dfc::conformance

@@ -1,0 +1,191 @@
+#include "child_process.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <string_view>
+#include <thread>
+
+namespace dfc::conformance {
+
+namespace {
+
+std::string system_error(const std::string& what) { return what + ": " + std::strerror(errno); }
+
+// execv needs a path; searching PATH here, before fork, keeps the child to
+// async-signal-safe calls only (the checker has ZeroMQ I/O threads running).
+std::string resolve_executable(const std::string& name) {
+  if (name.find('/') != std::string::npos) return name;
+  const char* path = std::getenv("PATH");
+  std::string_view dirs = path != nullptr ? path : "/usr/bin:/bin";
+  while (true) {
+    const auto colon = dirs.find(':');
+    const std::string dir(dirs.substr(0, colon));
+    const std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    if (colon == std::string_view::npos) break;
+    dirs.remove_prefix(colon + 1);
+  }
+  throw std::runtime_error("cannot run '" + name + "': not found in PATH");
+}
+
+std::string join(const std::vector<std::string>& argv) {
+  std::string text;
+  for (const auto& arg : argv) text += (text.empty() ? "" : " ") + arg;
+  return text;
+}
+
+}  // namespace
+
+ChildProcess::ChildProcess(const std::vector<std::string>& argv) : command_(join(argv)) {
+  if (argv.empty()) throw std::runtime_error("no command given");
+  const std::string executable = resolve_executable(argv[0]);
+  std::vector<std::string> args = argv;
+  std::vector<char*> c_argv;
+  for (auto& arg : args) c_argv.push_back(arg.data());
+  c_argv.push_back(nullptr);
+
+  int out_pipe[2];
+  int exec_pipe[2];  // reports a failed execv back to us: stays empty when exec succeeds (CLOEXEC)
+  if (::pipe2(out_pipe, O_CLOEXEC) != 0) throw std::runtime_error(system_error("cannot create a pipe"));
+  UniqueFd out_read(out_pipe[0]);
+  UniqueFd out_write(out_pipe[1]);
+  if (::pipe2(exec_pipe, O_CLOEXEC) != 0) throw std::runtime_error(system_error("cannot create a pipe"));
+  UniqueFd exec_read(exec_pipe[0]);
+  UniqueFd exec_write(exec_pipe[1]);
+  stderr_file_ = UniqueFd(::memfd_create("dfc-conformance-stderr", MFD_CLOEXEC));
+  if (!stderr_file_.valid()) throw std::runtime_error(system_error("cannot create a buffer for the server's stderr"));
+  UniqueFd null_in(::open("/dev/null", O_RDONLY | O_CLOEXEC));
+  const pid_t parent = ::getpid();
+
+  pid_ = ::fork();
+  if (pid_ < 0) throw std::runtime_error(system_error("cannot start '" + command_ + "': fork failed"));
+  if (pid_ == 0) {
+    // Child: async-signal-safe calls only.
+    ::setpgid(0, 0);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);  // the checker died before prctl took effect
+    ::dup2(null_in.get(), STDIN_FILENO);
+    ::dup2(out_write.get(), STDOUT_FILENO);
+    ::dup2(stderr_file_.get(), STDERR_FILENO);
+    ::execv(executable.c_str(), c_argv.data());
+    const int error = errno;
+    (void)!::write(exec_write.get(), &error, sizeof error);
+    ::_exit(127);
+  }
+  ::setpgid(pid_, pid_);  // also here: whichever of parent and child runs first
+  out_write.reset();
+  exec_write.reset();
+  int exec_errno = 0;
+  ssize_t got = 0;
+  do got = ::read(exec_read.get(), &exec_errno, sizeof exec_errno);
+  while (got < 0 && errno == EINTR);
+  if (got == static_cast<ssize_t>(sizeof exec_errno)) {
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+    pid_ = -1;
+    throw std::runtime_error("cannot run '" + executable + "': " + std::strerror(exec_errno));
+  }
+  stdout_ = std::move(out_read);
+}
+
+ChildProcess::~ChildProcess() { kill(); }
+
+bool ChildProcess::fill_stdout(std::chrono::milliseconds timeout) {
+  if (stdout_eof_) return false;
+  pollfd item{stdout_.get(), POLLIN, 0};
+  const int ready = ::poll(&item, 1, static_cast<int>(std::max<std::int64_t>(timeout.count(), 0)));
+  if (ready <= 0) return true;
+  char chunk[4096];
+  const ssize_t n = ::read(stdout_.get(), chunk, sizeof chunk);
+  if (n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN)) {
+    stdout_eof_ = true;
+    return false;
+  }
+  if (n > 0) stdout_buffer_.append(chunk, static_cast<std::size_t>(n));
+  return true;
+}
+
+std::optional<std::string> ChildProcess::read_line(std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (true) {
+    if (const auto newline = stdout_buffer_.find('\n'); newline != std::string::npos) {
+      std::string line = stdout_buffer_.substr(0, newline);
+      stdout_buffer_.erase(0, newline + 1);
+      return line;
+    }
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+    if (left.count() <= 0 || !fill_stdout(left)) return std::nullopt;
+  }
+}
+
+std::string ChildProcess::read_rest(std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (true) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+    if (left.count() <= 0 || !fill_stdout(left)) break;
+  }
+  return std::exchange(stdout_buffer_, {});
+}
+
+std::optional<int> ChildProcess::poll_exit() {
+  if (exit_status_ || pid_ < 0) return exit_status_;
+  int status = 0;
+  const pid_t done = ::waitpid(pid_, &status, WNOHANG);
+  if (done == pid_) exit_status_ = status;
+  return exit_status_;
+}
+
+std::optional<int> ChildProcess::wait_exit(std::chrono::milliseconds timeout) {
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  while (!poll_exit() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  return poll_exit();
+}
+
+void ChildProcess::kill() noexcept {
+  if (pid_ < 0 || exit_status_) return;
+  ::kill(-pid_, SIGKILL);
+  ::kill(pid_, SIGKILL);  // in case it left its process group
+  int status = 0;
+  if (::waitpid(pid_, &status, 0) == pid_) exit_status_ = status;
+}
+
+std::string ChildProcess::stderr_tail(std::size_t max_lines) const {
+  struct stat info {};
+  if (::fstat(stderr_file_.get(), &info) != 0 || info.st_size <= 0) return {};
+  constexpr off_t kWindow = 64 * 1024;
+  const off_t start = info.st_size > kWindow ? info.st_size - kWindow : 0;
+  std::string text(static_cast<std::size_t>(info.st_size - start), '\0');
+  const ssize_t n = ::pread(stderr_file_.get(), text.data(), text.size(), start);
+  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  while (!text.empty() && text.back() == '\n') text.pop_back();
+  // Walk back over max_lines newlines; the tail starts just after the last one passed.
+  std::size_t begin = text.size();
+  std::size_t lines = 0;
+  while (begin > 0) {
+    if (text[begin - 1] == '\n' && ++lines == max_lines) break;
+    --begin;
+  }
+  return text.substr(begin);
+}
+
+std::string ChildProcess::describe_status(int status) {
+  if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    const char* name = ::strsignal(sig);
+    return "was killed by signal " + std::to_string(sig) + (name != nullptr ? " (" + std::string(name) + ")" : "");
+  }
+  return "stopped (wait status " + std::to_string(status) + ")";
+}
+
+}  // namespace dfc::conformance

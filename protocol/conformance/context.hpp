@@ -1,0 +1,86 @@
+#pragma once
+// Context: the server under test and what the checks have learned about it
+// (its limits, capabilities, interface size and step), shared by the checks
+// of one run in table order.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <zmq.hpp>
+
+#include "check.hpp"
+#include "child_process.hpp"
+#include "dfc/protocol/client.hpp"
+#include "options.hpp"
+
+namespace dfc::conformance {
+
+/// The server process exited while a reply was awaited.
+class ServerGone : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Context {
+ public:
+  explicit Context(Options options);
+
+  [[nodiscard]] const Options& options() const noexcept { return options_; }
+  [[nodiscard]] std::chrono::milliseconds timeout() const noexcept { return options_.timeout; }
+
+  /// Starts COMMAND ARGS --bind tcp://127.0.0.1:*, reads the listening line
+  /// and connects. Throws CheckFailure saying what went wrong.
+  void start_server();
+  [[nodiscard]] ChildProcess& server();
+  [[nodiscard]] bool server_started() const noexcept { return server_ != nullptr; }
+  [[nodiscard]] const std::string& endpoint() const noexcept { return endpoint_; }
+
+  /// One request with the run's deadline; its seq is assigned by the connection.
+  /// Returns error replies (never throws RemoteError). Throws TimeoutError or ServerGone.
+  protocol::Message request(protocol::Message request);
+  protocol::Message request(std::string_view type, nlohmann::json body = nlohmann::json::object());
+  /// Sends hand-made frames (malformed-message checks); returns the reply.
+  protocol::Message send_frames(const std::vector<std::string>& frames);
+  /// A header object for hand-made frames, with a seq of its own (reply_to can be checked).
+  [[nodiscard]] nlohmann::json raw_header(std::string_view type);
+  [[nodiscard]] std::int64_t last_raw_seq() const noexcept { return next_raw_seq_ - 1; }
+
+  /// Throws CheckFailure unless the server answers ping with pong.
+  void expect_alive();
+  /// While set, the server exiting is expected (after shutdown) and not an error.
+  void set_exit_expected(bool expected) noexcept { exit_expected_ = expected; }
+
+  // What the checks learned, for the checks after them.
+  protocol::Limits limits;               ///< as announced in hello_ok
+  bool provides_interface = false;       ///< capabilities from hello_ok
+  bool accepts_interface = false;
+  bool snapshot = false;
+  double dt = 1e-6;                      ///< s; dt_suggested from configured
+  std::int64_t step = 0;                 ///< the server's step as the checks know it
+  /// Rows of the interface arrays, once known: the mesh the server provided
+  /// (get_interface) and the test mesh it accepted (set_interface).
+  std::optional<std::int64_t> provided_nodes;
+  std::optional<std::int64_t> accepted_nodes;
+  std::optional<protocol::Message> hello_reply;
+
+  // Bookkeeping of the runner.
+  std::set<Milestone> reached;
+  std::optional<std::string> unavailable;  ///< why the server can no longer be used, once it cannot
+
+ private:
+  void check_still_running();
+
+  Options options_;
+  zmq::context_t zmq_context_{1};
+  std::optional<protocol::Connection> connection_;
+  std::unique_ptr<ChildProcess> server_;
+  std::string endpoint_;
+  std::int64_t next_raw_seq_ = 1'000'000;  ///< far from the connection's own 1, 2, 3 ...
+  bool exit_expected_ = false;
+};
+
+}  // namespace dfc::conformance
