@@ -112,14 +112,14 @@ std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& con
   }
   const bool coupled = participants.size() == 2;
   for (auto& p : participants) {
-    const auto& hello = p->info();
+    p->configure(to_ms(scenario.run.deadline_s));
     if (coupled) {
       const char* needed = p->spec().slot == "dem" ? protocol::capability::accepts_interface : protocol::capability::provides_interface;
-      if (!hello.has(needed))
-        throw ConfigError(p->spec().key_path() + ".program", "'" + p->spec().program + "' (" + hello.solver_name + ") lacks capability '" +
-                                                                 needed + "' that the " + p->spec().slot + " slot of a coupled run needs");
+      if (!p->has(needed))
+        throw ConfigError(p->spec().key_path() + ".program",
+                          "'" + p->spec().program + "' (" + p->info().solver_name + "), as configured, lacks capability '" + needed +
+                              "' that the " + p->spec().slot + " slot of a coupled run needs (check its coupling settings)");
     }
-    p->configure(to_ms(scenario.run.deadline_s));
   }
   return participants;
 }
@@ -170,7 +170,7 @@ class RunRecorder {
 
 void write_snapshots(ResultsWriter& writer, std::vector<std::unique_ptr<Participant>>& participants, double time, milliseconds deadline) {
   for (auto& p : participants) {
-    if (!p->info().has(protocol::capability::snapshot)) continue;
+    if (!p->has(protocol::capability::snapshot)) continue;
     protocol::Message reply;
     try {
       reply = p->client().snapshot(deadline);
@@ -272,7 +272,17 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     log << " each.\n";
 
     // Step 5: the exchanges.
+    // Interface kinematics. The continuum returns its gridpoint velocity and
+    // displacement at the end of each advance; the DEM moves its wall vertices
+    // at the velocity it is sent for the whole exchange. Sending the bare
+    // end-of-advance velocity would let the wall drift from the gridpoints
+    // whenever k or m > 1 (the continuum's velocity varies inside its advance),
+    // so the coupler tracks where it has moved the wall (x += v·dt, step by
+    // step, as the DEM does) and adds the correction that brings the wall onto
+    // the continuum's displacement: v_sent = v + (u_continuum − u_wall) / T.
     std::vector<double> velocity(std::size_t(n_nodes) * 3, 0.0);
+    std::vector<double> continuum_displacement(velocity.size(), 0.0);
+    std::vector<double> wall_displacement(velocity.size(), 0.0);
     std::int64_t dem_step = 0;
     std::int64_t continuum_step = 0;
     double worst_balance = 0.0;
@@ -290,7 +300,15 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
       std::vector<protocol::Array> to_continuum;
       if (dem != nullptr) {
         std::vector<protocol::Array> inputs;
-        if (coupled) inputs.push_back(protocol::Array::from_f64(protocol::field::velocity, {n_nodes, 3}, velocity));
+        if (coupled) {
+          const double exchange_time = timing.exchange_duration();
+          std::vector<double> sent(velocity.size());
+          for (std::size_t i = 0; i < sent.size(); ++i) {
+            sent[i] = velocity[i] + (continuum_displacement[i] - wall_displacement[i]) / exchange_time;
+            for (std::int64_t s = 0; s < timing.dem_steps_per_exchange; ++s) wall_displacement[i] += sent[i] * timing.dt_dem;
+          }
+          inputs.push_back(protocol::Array::from_f64(protocol::field::velocity, {n_nodes, 3}, sent));
+        }
         protocol::Message reply;
         try {
           reply = dem->client().advance(dem_step, timing.dem_steps_per_exchange, timing.dt_dem, std::move(inputs), deadline);
@@ -313,7 +331,10 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
         try {
           reply = continuum->client().advance(continuum_step, timing.continuum_steps_per_exchange, timing.dt_continuum,
                                               std::move(to_continuum), deadline);
-          if (coupled) velocity = protocol::require_f64(reply.arrays, protocol::field::velocity, n_nodes, 3);
+          if (coupled) {
+            velocity = protocol::require_f64(reply.arrays, protocol::field::velocity, n_nodes, 3);
+            continuum_displacement = protocol::require_f64(reply.arrays, protocol::field::displacement, n_nodes, 3);
+          }
         } catch (const std::exception& e) {
           continuum->fail(e, "advancing from step " + std::to_string(continuum_step));
         }

@@ -26,6 +26,14 @@ std::string Participant::label() const {
   return text + ")";
 }
 
+bool Participant::has(std::string_view capability) const {
+  const auto narrowed = configured_info_.find("capabilities");
+  if (narrowed == configured_info_.end() || !narrowed->is_array()) return hello_.has(capability);
+  for (const auto& c : *narrowed)
+    if (c.is_string() && c.get<std::string>() == capability) return true;
+  return false;
+}
+
 void Participant::check_alive() {
   if (!process_) return;
   if (const auto exited = process_->exit_description())

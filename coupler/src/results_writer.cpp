@@ -5,6 +5,7 @@
 #include <ctime>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -105,6 +106,20 @@ struct ResultsWriter::State {
   std::map<std::string, std::int64_t> snapshot_count;
   std::vector<XdmfSnapshot> catalogue;
   bool sidecar_stale = true;
+  std::set<std::int64_t> polyvertex_counts;  ///< point counts whose Polyvertex connectivity is stored
+
+  // The sidecar's Polyvertex topologies read 0..n-1 from the file; one dataset
+  // per distinct point count (usually one per run: particle counts rarely change).
+  void ensure_polyvertex_connectivity(std::int64_t points) {
+    if (!polyvertex_counts.insert(points).second) return;
+    std::vector<std::int64_t> indices(static_cast<std::size_t>(points));
+    for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<std::int64_t>(i);
+    const std::string location = polyvertex_connectivity_path(points);  // "/<group>/<name>"
+    const std::size_t slash = location.find_last_of('/');
+    const h5::Group group = file.root().require_group(location.substr(1, slash - 1));
+    const std::int64_t shape[] = {points};
+    (void)group.write_dataset(location.substr(slash + 1), H5T_NATIVE_INT64, shape, std::as_bytes(std::span(indices)));
+  }
 
   void write_pending_rows() {
     if (pending.empty() || pending.front().empty()) return;
@@ -227,6 +242,7 @@ void ResultsWriter::write_snapshot(const std::string& role, std::int64_t step, d
     (void)group.write_dataset(array.name, native_type(array.dtype), array.shape, array.bytes);
     entry.arrays.push_back({array.name, array.dtype, array.shape});
   }
+  if (const std::optional<std::int64_t> points = polyvertex_point_count(entry)) s.ensure_polyvertex_connectivity(*points);
   ++index;
   s.catalogue.push_back(std::move(entry));
   s.sidecar_stale = true;

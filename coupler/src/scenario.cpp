@@ -99,7 +99,7 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   scenario.document = document;
   scenario.source = source;
   ConfigReader root(document, "");
-  const std::int64_t schema = root.integer("schema_version", 1);
+  const std::int64_t schema = root.integer("schema_version", 1);  // required, >= 1
   if (schema != kScenarioSchemaVersion)
     root.fail("schema_version", "this coupler reads schema_version " + std::to_string(kScenarioSchemaVersion) + ", the file has " +
                                     std::to_string(schema));

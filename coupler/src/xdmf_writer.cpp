@@ -1,6 +1,6 @@
 #include "dfc/coupler/xdmf_writer.hpp"
 
-#include <cstdio>
+#include <charconv>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -34,8 +34,8 @@ std::string escape(std::string_view text) {
 // Shortest text that reads back as the same double, so time values survive exactly.
 std::string number_text(double value) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
 }
 
 std::string dimensions_text(const std::vector<std::int64_t>& shape) {
@@ -75,6 +75,30 @@ std::optional<std::int64_t> point_count(const XdmfArrayInfo* positions) {
   return positions->shape[0];
 }
 
+// How a snapshot is drawn: its geometry, and hexahedra when it has them.
+struct Layout {
+  const XdmfArrayInfo* positions = nullptr;
+  const XdmfArrayInfo* zones = nullptr;  ///< null: one vertex per point
+  std::int64_t points = 0;
+  std::int64_t cells = 0;
+};
+
+std::optional<Layout> layout_of(const XdmfSnapshot& snapshot) {
+  const bool particles = snapshot.kind == "particles";
+  if (!particles && snapshot.kind != "grid") return std::nullopt;  // e.g. bonds or interface data: not a mesh ParaView can show this way
+  Layout layout;
+  layout.positions = find(snapshot, particles ? "particle_position" : "node_position");
+  const std::optional<std::int64_t> points = point_count(layout.positions);
+  if (!points) return std::nullopt;
+  layout.points = *points;
+  const XdmfArrayInfo* zones = particles ? nullptr : find(snapshot, "zone_nodes");
+  if (zones != nullptr && zones->shape.size() == 2 && zones->shape[1] == 8 && zones->shape[0] > 0 && is_integer(zones->dtype)) {
+    layout.zones = zones;
+    layout.cells = zones->shape[0];
+  }  // otherwise not a hexahedron connectivity: the nodes are shown as points
+  return layout;
+}
+
 // XDMF AttributeType from the per-entity component count; nothing for shapes ParaView cannot label.
 std::optional<const char*> attribute_type(const XdmfArrayInfo& array) {
   if (array.shape.size() == 1) return "Scalar";
@@ -109,17 +133,12 @@ class GridWriter {
 
   // One uniform grid for `snapshot`, or nothing when it has no usable geometry.
   void grid(const XdmfSnapshot& snapshot) {
-    const bool particles = snapshot.kind == "particles";
-    if (!particles && snapshot.kind != "grid") return;  // e.g. bonds or interface data: not a mesh ParaView can show this way
-    const XdmfArrayInfo* positions = find(snapshot, particles ? "particle_position" : "node_position");
-    const std::optional<std::int64_t> points = point_count(positions);
-    if (!points) return;
-
-    const XdmfArrayInfo* zones = particles ? nullptr : find(snapshot, "zone_nodes");
-    if (zones != nullptr &&
-        (zones->shape.size() != 2 || zones->shape[1] != 8 || zones->shape[0] <= 0 || !is_integer(zones->dtype)))
-      zones = nullptr;  // not a hexahedron connectivity: show the nodes as points instead
-    const std::int64_t cells = zones != nullptr ? zones->shape[0] : 0;
+    const std::optional<Layout> layout = layout_of(snapshot);
+    if (!layout) return;
+    const XdmfArrayInfo* positions = layout->positions;
+    const XdmfArrayInfo* zones = layout->zones;
+    const std::int64_t points = layout->points;
+    const std::int64_t cells = layout->cells;
 
     const std::string index = snapshot.group_path.substr(snapshot.group_path.find_last_of('/') + 1);
     out_ << "      <Grid Name=\"" << escape(snapshot.role + "_" + index) << "\" GridType=\"Uniform\">\n";
@@ -129,8 +148,10 @@ class GridWriter {
       data_item(snapshot, *zones, "          ");
       out_ << "        </Topology>\n";
     } else {
-      // Without a connectivity DataItem the readers make one vertex per point.
-      out_ << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << *points << "\" NodesPerElement=\"1\"/>\n";
+      out_ << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << points << "\" NodesPerElement=\"1\">\n";
+      out_ << "          <DataItem Dimensions=\"" << points << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << escape(h5_file_name_)
+           << ':' << polyvertex_connectivity_path(points) << "</DataItem>\n";
+      out_ << "        </Topology>\n";
     }
     out_ << "        <Geometry GeometryType=\"XYZ\">\n";
     data_item(snapshot, *positions, "          ");
@@ -141,9 +162,9 @@ class GridWriter {
       const std::int64_t leading = array.shape[0];
       const bool zone_named = array.name.starts_with("zone_");
       // When node and zone counts coincide the name decides; otherwise the count does.
-      if (zones != nullptr && leading == cells && (leading != *points || zone_named)) {
+      if (zones != nullptr && leading == cells && (leading != points || zone_named)) {
         attribute(snapshot, array, "Cell");
-      } else if (leading == *points) {
+      } else if (leading == points) {
         attribute(snapshot, array, "Node");
       }
     }
@@ -156,6 +177,14 @@ class GridWriter {
 };
 
 }  // namespace
+
+std::optional<std::int64_t> polyvertex_point_count(const XdmfSnapshot& snapshot) {
+  const std::optional<Layout> layout = layout_of(snapshot);
+  if (!layout || layout->zones != nullptr) return std::nullopt;
+  return layout->points;
+}
+
+std::string polyvertex_connectivity_path(std::int64_t points) { return "/xdmf/polyvertex_" + std::to_string(points); }
 
 std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots) {
   // Roles in order of first appearance, so the collections follow the run.

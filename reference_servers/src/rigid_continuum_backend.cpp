@@ -13,8 +13,10 @@ protocol::SolverIdentity RigidContinuumBackend::identity() const {
 
 nlohmann::json RigidContinuumBackend::configure(const nlohmann::json& section) {
   nlohmann::json info = geometry_.configure(section);
-  // A rigid body has no stable-step limit: any dt is fine.
+  // A rigid body has no stable-step limit: any dt is fine. It can only be the
+  // side that provides the interface, whatever role the section names.
   info["dt_max"] = nullptr;
+  info["capabilities"] = identity().capabilities;
   force_received_ = {0.0, 0.0, 0.0};
   return info;
 }

@@ -11,7 +11,8 @@ namespace dfc::coupler {
 namespace {
 
 nlohmann::json minimal() {
-  return {{"name", "t"},
+  return {{"schema_version", 1},
+          {"name", "t"},
           {"participants", {{"continuum", {{"program", "/bin/true"}, {"config", nlohmann::json::object()}}}}},
           {"run", {{"exchanges", 3}}}};
 }

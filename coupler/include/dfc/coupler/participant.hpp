@@ -47,6 +47,9 @@ class Participant {
   [[nodiscard]] const protocol::SolverClient::Hello& info() const noexcept { return hello_; }
   [[nodiscard]] protocol::SolverClient& client() noexcept { return *client_; }
   [[nodiscard]] const nlohmann::json& configured_info() const noexcept { return configured_info_; }
+  /// The session's capabilities: configure's info.capabilities when the server
+  /// narrowed them there (SPEC.md §4.2), else those of hello_ok.
+  [[nodiscard]] bool has(std::string_view capability) const;
 
   /// Turns an exception thrown while talking to this participant into a
   /// ParticipantFailure with the full story (rethrows ConfigError/UserError unchanged).

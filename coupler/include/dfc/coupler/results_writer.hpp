@@ -9,12 +9,13 @@
 //   /snapshots/<role>/<NNNNNN>/<array>
 //                          one group per snapshot (attributes step, time, kind), one dataset
 //                          per array with the array's dtype and shape
+//   /xdmf/polyvertex_<n>   0..n-1 (i64): connectivity the sidecar uses to show n particles as vertices
 //
 // Rows are buffered and written in blocks (one HDF5 extend per block, not per
-// row); flush() writes them and flushes the file, after which another process
-// can open it read-only (h5::File::open_read_only, or h5py with
-// HDF5_USE_FILE_LOCKING=FALSE). close() also writes the sidecar; the
-// destructor closes without throwing.
+// row); flush() writes them, updates the sidecar and flushes the file, after
+// which other programs (h5::File::open_read_only, h5py, ParaView) can read it
+// while the run goes on: the file is not locked, so they see the last flush.
+// close() also writes the sidecar; the destructor closes without throwing.
 //
 //   ResultsWriter out("run.h5", scenario, versions);
 //   out.declare_series({"time_s", "pile_force_n"}, {{"time_s", "s"}, {"pile_force_n", "N"}});

@@ -5,7 +5,9 @@
 // "<file>.h5:/snapshots/<role>/<index>/<array>" relative to the sidecar.
 //
 // One temporal collection per role. A "particles" snapshot becomes a
-// Polyvertex grid on particle_position; a "grid" snapshot a Hexahedron grid
+// Polyvertex grid on particle_position (its connectivity 0..n-1 is a dataset
+// of the results file, polyvertex_connectivity_path(n): the Xdmf3 reader makes
+// no cells from a Polyvertex topology without one); a "grid" snapshot a Hexahedron grid
 // with Geometry node_position and Topology zone_nodes (VTK hexahedron order,
 // which is also XDMF's). Arrays whose leading dimension is the point count
 // become node attributes, the zone count cell attributes, with Scalar /
@@ -17,6 +19,7 @@
 // must be written in that order for ParaView's component names to be right.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -41,6 +44,12 @@ struct XdmfSnapshot {
   std::string kind;  ///< "particles" or "grid"; other kinds are not described
   std::vector<XdmfArrayInfo> arrays;
 };
+
+/// The point count when `snapshot` is drawn as vertices (particles, or a grid
+/// without hexahedra); nothing when it is drawn otherwise or left out.
+[[nodiscard]] std::optional<std::int64_t> polyvertex_point_count(const XdmfSnapshot& snapshot);
+/// Where the results file holds 0, 1, ..., points-1 (int64) for Polyvertex topologies: "/xdmf/polyvertex_<points>".
+[[nodiscard]] std::string polyvertex_connectivity_path(std::int64_t points);
 
 /// The XDMF document for `snapshots`, referring to the HDF5 file by `h5_file_name`
 /// (a path relative to the sidecar, normally just the file name).

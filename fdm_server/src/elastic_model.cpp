@@ -1,0 +1,35 @@
+#include "dfc/fdm/elastic_model.hpp"
+
+#include "dfc/common/config_reader.hpp"
+
+namespace dfc::fdm {
+
+ElasticModel::ElasticModel(ElasticModuli moduli) : moduli_(moduli) {}
+
+ElasticModel ElasticModel::from_young_poisson(double young_modulus, double poisson_ratio) {
+  return ElasticModel({young_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)), young_modulus / (2.0 * (1.0 + poisson_ratio))});
+}
+
+std::unique_ptr<ConstitutiveModel> ElasticModel::from_config(ConfigReader& material) {
+  const bool young_given = material.has("young_modulus_pa") || material.has("poisson_ratio");
+  const bool bulk_given = material.has("bulk_modulus_pa") || material.has("shear_modulus_pa");
+  if (young_given && bulk_given)
+    material.fail("bulk_modulus_pa", "give either young_modulus_pa + poisson_ratio or bulk_modulus_pa + shear_modulus_pa, not both");
+  if (bulk_given) {
+    const double bulk = material.positive("bulk_modulus_pa");
+    const double shear = material.positive("shear_modulus_pa");
+    return std::make_unique<ElasticModel>(ElasticModuli{bulk, shear});
+  }
+  const double young = material.positive("young_modulus_pa");
+  const double poisson = material.number("poisson_ratio", Bounds{-1.0, 0.5, true});
+  if (!(poisson < 0.5))
+    material.fail("poisson_ratio", "expected a number in (-1, 0.5), got 0.5 (incompressible; the bulk modulus would be infinite)");
+  return std::make_unique<ElasticModel>(from_young_poisson(young, poisson));
+}
+
+void ElasticModel::update(const StrainIncrement& increment, Stress& stress, StateSpan /*state*/) const {
+  // Hooke's law in increments: Δσ = 2G dev(Δε) + K tr(Δε) I (tension positive).
+  stress += 2.0 * moduli_.shear * increment.strain.deviator() + SymTensor::isotropic(moduli_.bulk * increment.strain.trace());
+}
+
+}  // namespace dfc::fdm

@@ -1,0 +1,183 @@
+// Reading the fdm_server section (schema in fdm_config.hpp).
+#include "dfc/fdm/fdm_config.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dfc/common/config_reader.hpp"
+#include "dfc/fdm/initial_stress.hpp"
+#include "dfc/fdm/mesh_generators.hpp"
+#include "dfc/fdm/model_registry.hpp"
+
+namespace dfc::fdm {
+
+namespace {
+
+// Each zone costs about 3 kB (10 tetrahedra with geometry, stress and forces).
+constexpr std::int64_t kMaxZones = 5'000'000;
+
+Vec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+Vec3 read_positive_vec3(ConfigReader& cfg, std::string_view key) {
+  const nlohmann::json& value = cfg.raw(key);
+  const auto positive = [](const nlohmann::json& v) { return v.is_number() && v.get<double>() > 0.0 && std::isfinite(v.get<double>()); };
+  if (!value.is_array() || value.size() != 3 || !std::all_of(value.begin(), value.end(), positive))
+    cfg.fail(key, "expected an array of 3 positive lengths [Lx, Ly, Lz] in m, got " + value.dump());
+  return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
+}
+
+std::array<Index, 3> read_zone_counts(ConfigReader& cfg, std::string_view key) {
+  const nlohmann::json& value = cfg.raw(key);
+  const auto valid_count = [](const nlohmann::json& v) { return v.is_number_integer() && v.get<std::int64_t>() >= 1; };
+  if (!value.is_array() || value.size() != 3 || !std::all_of(value.begin(), value.end(), valid_count))
+    cfg.fail(key, "expected an array of 3 integers >= 1 [nx, ny, nz], got " + value.dump());
+  return {value[0].get<Index>(), value[1].get<Index>(), value[2].get<Index>()};
+}
+
+void check_zone_total(ConfigReader& cfg, std::string_view key, double zones) {
+  if (zones > double(kMaxZones))
+    cfg.fail(key, "the mesh would have " + std::to_string(std::int64_t(zones)) + " zones; at most " + std::to_string(kMaxZones) +
+                      " are allowed");
+}
+
+Mesh read_box(ConfigReader& cfg) {
+  BoxSpec spec;
+  spec.origin = to_vec3(cfg.vec3("origin_m", {0.0, 0.0, 0.0}));
+  spec.size = read_positive_vec3(cfg, "size_m");
+  spec.zones = read_zone_counts(cfg, "zones");
+  check_zone_total(cfg, "zones", double(spec.zones[0]) * double(spec.zones[1]) * double(spec.zones[2]));
+  return make_box(spec);
+}
+
+Mesh read_cylinder_cavity(ConfigReader& cfg) {
+  CylinderCavitySpec spec;
+  spec.inner_radius = cfg.positive("inner_radius_m");
+  spec.outer_radius = cfg.positive("outer_radius_m");
+  if (!(spec.outer_radius > spec.inner_radius)) cfg.fail("outer_radius_m", "must be larger than inner_radius_m");
+  spec.z_bottom = cfg.number("z_bottom_m", 0.0);
+  spec.height = cfg.positive("height_m");
+  spec.zones_radial = Index(cfg.integer("zones_radial", 1));
+  spec.zones_around = Index(cfg.integer("zones_around", 3));
+  spec.zones_vertical = Index(cfg.integer("zones_vertical", 1));
+  spec.grading_ratio = cfg.positive("grading_ratio", 1.0);
+  check_zone_total(cfg, "zones_radial", double(spec.zones_radial) * double(spec.zones_around) * double(spec.zones_vertical));
+  return make_cylinder_cavity(spec);
+}
+
+Mesh read_mesh(ConfigReader cfg) {
+  const std::string type = cfg.choice("type", {"box", "cylinder_cavity"});
+  Mesh mesh = type == "box" ? read_box(cfg) : read_cylinder_cavity(cfg);
+  cfg.finish();
+  return mesh;
+}
+
+Material read_material(ConfigReader cfg) {
+  const std::string keyword = cfg.string("model");
+  const ConstitutiveModelEntry* entry = find_constitutive_model(keyword);
+  if (entry == nullptr) {
+    std::string known;
+    for (const auto& e : constitutive_models()) known += (known.empty() ? "\"" : ", \"") + std::string(e.keyword) + "\"";
+    cfg.fail("model", "unknown constitutive model \"" + keyword + "\"; known models: " + known);
+  }
+  Material material;
+  material.density = cfg.positive("density_kg_m3");
+  material.model = entry->create(cfg);
+  cfg.finish();
+  return material;
+}
+
+SolverSettings read_settings(ConfigReader& root) {
+  SolverSettings settings;
+  settings.gravity = to_vec3(root.vec3("gravity_m_s2", {0.0, 0.0, 0.0}));
+  if (auto damping = root.optional_child("damping")) {
+    settings.local_damping = damping->number("local", 0.8, Bounds{0.0, 1.0});
+    if (!(settings.local_damping < 1.0)) damping->fail("local", "expected a number in [0, 1), got 1 (no net force would remain)");
+    damping->finish();
+  }
+  settings.mass_scaling = root.boolean("mass_scaling", true);
+  settings.threads = int(root.integer("threads", 0, 0));
+  if (settings.threads > 1024) root.fail("threads", "expected at most 1024 threads");
+  return settings;
+}
+
+BoundaryCondition read_boundary(ConfigReader& entry, const Mesh& mesh) {
+  BoundaryCondition condition;
+  condition.group = entry.string("group");
+  if (!mesh.has_face_group(condition.group))
+    entry.fail("group", "unknown face group \"" + condition.group + "\"; this mesh has " + mesh.face_group_names());
+  const std::string kind = entry.choice("condition", {"fixed", "roller", "pressure", "traction"});
+  if (kind == "fixed") condition.kind = BoundaryKind::fixed;
+  if (kind == "roller") condition.kind = BoundaryKind::roller;
+  if (kind == "pressure") {
+    condition.kind = BoundaryKind::pressure;
+    condition.pressure = entry.number("pressure_pa");
+  }
+  if (kind == "traction") {
+    condition.kind = BoundaryKind::traction;
+    condition.traction = to_vec3(entry.vec3("traction_pa"));
+  }
+  entry.finish();
+  return condition;
+}
+
+void read_initial_stress(ConfigReader cfg, Solver& solver) {
+  [[maybe_unused]] const std::string type = cfg.choice("type", {"geostatic"});  // the only profile so far
+  GeostaticStress profile;
+  profile.k0 = cfg.number("k0", Bounds{0.0});
+  profile.z_top = cfg.number("z_top_m", solver.mesh().max_z());
+  cfg.finish();
+  const Vec3 g = solver.settings().gravity;
+  if (g.x() != 0.0 || g.y() != 0.0 || g.z() > 0.0)
+    cfg.fail("type", "geostatic initial stress needs gravity_m_s2 pointing along -z (depth is measured down from z_top_m)");
+  const double density = solver.density();
+  const double g_magnitude = g.norm();
+  solver.set_initial_stress([&](const Vec3& centroid) { return geostatic_stress(profile, density, g_magnitude, centroid.z()); });
+}
+
+CouplingSettings read_coupling(ConfigReader cfg, const Mesh& mesh) {
+  CouplingSettings coupling;
+  coupling.role = cfg.choice("role", {"provider", "driven"}) == "provider" ? CouplingRole::provider : CouplingRole::driven;
+  coupling.group = cfg.string("group");
+  if (!mesh.has_face_group(coupling.group))
+    cfg.fail("group", "unknown face group \"" + coupling.group + "\"; this mesh has " + mesh.face_group_names());
+  cfg.finish();
+  return coupling;
+}
+
+}  // namespace
+
+FdmModel load_fdm_model(const nlohmann::json& section) {
+  ConfigReader root(section, "");
+  Mesh mesh = read_mesh(root.child("mesh"));
+  Material material = read_material(root.child("material"));
+  const SolverSettings settings = read_settings(root);
+
+  std::optional<Solver> solver;
+  try {
+    solver.emplace(std::move(mesh), std::move(material), settings);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const UserError& e) {
+    throw ConfigError("mesh", e.what());
+  }
+
+  if (root.has("boundaries")) {
+    for (ConfigReader& entry : root.children("boundaries")) {
+      const BoundaryCondition condition = read_boundary(entry, solver->mesh());
+      try {
+        solver->apply_boundary_condition(condition);
+      } catch (const UserError& e) {
+        entry.fail("condition", e.what());
+      }
+    }
+  } else {
+    root.accept("boundaries");
+  }
+  if (auto initial = root.optional_child("initial_stress")) read_initial_stress(std::move(*initial), *solver);
+  CouplingSettings coupling;
+  if (auto cfg = root.optional_child("coupling")) coupling = read_coupling(std::move(*cfg), solver->mesh());
+  root.finish();
+  return FdmModel{std::move(*solver), std::move(coupling)};
+}
+
+}  // namespace dfc::fdm

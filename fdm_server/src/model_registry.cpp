@@ -1,0 +1,37 @@
+#include "dfc/fdm/model_registry.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "dfc/fdm/elastic_model.hpp"
+
+namespace dfc::fdm {
+
+namespace {
+
+// The one table of constitutive models. mohr_coulomb and structured_cam_clay
+// (DESIGN §6) will be rows here, with per-tetrahedron state.
+const std::array<ConstitutiveModelEntry, 1> kModels = {{
+    {ElasticModel::kKeyword, ElasticModel::kSummary, ElasticModel::kParameters, &ElasticModel::from_config},
+}};
+
+}  // namespace
+
+std::span<const ConstitutiveModelEntry> constitutive_models() { return kModels; }
+
+const ConstitutiveModelEntry* find_constitutive_model(std::string_view keyword) {
+  const auto it = std::find_if(kModels.begin(), kModels.end(), [&](const auto& entry) { return entry.keyword == keyword; });
+  return it == kModels.end() ? nullptr : &*it;
+}
+
+std::string describe_constitutive_models() {
+  std::string text;
+  for (const ConstitutiveModelEntry& entry : kModels) {
+    text += "  \"" + std::string(entry.keyword) + "\": " + std::string(entry.summary) + "\n";
+    for (const ModelParameter& p : entry.parameters)
+      text += "      " + std::string(p.key) + " [" + std::string(p.unit) + "]  " + std::string(p.meaning) + "\n";
+  }
+  return text;
+}
+
+}  // namespace dfc::fdm

@@ -1,0 +1,176 @@
+// XDMF sidecar: well-formed XML whose every DataItem names a dataset that
+// exists in the HDF5 file with the stated dimensions, and the mesh description
+// ParaView needs for particles and grids.
+#include "dfc/coupler/xdmf_writer.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/common/hdf5_file.hpp"
+#include "dfc/coupler/results_writer.hpp"
+#include "results_sample_data.hpp"
+
+namespace dfc::coupler {
+namespace {
+
+using namespace dfc::coupler::testing;
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Empty when `xml` is well formed as far as element nesting and attribute
+/// quoting go (enough for generated XML without comments or CDATA); otherwise why not.
+std::string nesting_error(const std::string& xml) {
+  std::vector<std::string> open;
+  std::size_t at = 0;
+  while ((at = xml.find('<', at)) != std::string::npos) {
+    const std::size_t end = xml.find('>', at);
+    if (end == std::string::npos) return "unterminated tag at " + std::to_string(at);
+    const std::string tag = xml.substr(at + 1, end - at - 1);
+    at = end + 1;
+    if (tag.starts_with('?')) {
+      if (!tag.ends_with('?')) return "bad processing instruction";
+      continue;
+    }
+    if (std::count(tag.begin(), tag.end(), '"') % 2 != 0) return "unbalanced quotes in <" + tag + ">";
+    if (tag.starts_with('/')) {
+      if (open.empty() || open.back() != tag.substr(1)) return "unexpected </" + tag.substr(1) + ">";
+      open.pop_back();
+      continue;
+    }
+    const std::string name = tag.substr(0, tag.find_first_of(" \t\n/"));
+    if (name.empty()) return "empty tag name";
+    if (!tag.ends_with('/')) open.push_back(name);
+  }
+  return open.empty() ? "" : "unclosed <" + open.back() + ">";
+}
+
+struct DataItemRef {
+  std::vector<std::int64_t> dimensions;
+  std::string file;
+  std::string path;
+};
+
+std::vector<DataItemRef> data_items(const std::string& xml) {
+  std::vector<DataItemRef> refs;
+  const std::regex item(R"re(<DataItem Dimensions="([0-9 ]+)"[^>]*Format="HDF">([^<:]+):([^<]+)</DataItem>)re");
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), item); it != std::sregex_iterator(); ++it) {
+    DataItemRef ref;
+    std::istringstream dims((*it)[1].str());
+    for (std::int64_t d = 0; dims >> d;) ref.dimensions.push_back(d);
+    ref.file = (*it)[2].str();
+    ref.path = (*it)[3].str();
+    refs.push_back(ref);
+  }
+  return refs;
+}
+
+std::size_t count(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+class ResultsXdmf : public ::testing::Test {
+ protected:
+  // Not short decimals, so a time printed with too few digits would not read back equal.
+  static double time_of(int k) { return 0.1 * k + 1.0 / 3.0; }
+
+  ResultsXdmf() : dir_("xdmf") {
+    ResultsWriter out(dir_ / "run.h5", nlohmann::json::object(), nlohmann::json::object());
+    for (int k = 0; k < 3; ++k) {
+      out.write_snapshot("dem", 100 * k, time_of(k), "particles", particle_arrays(6, k));
+      out.write_snapshot("fdm", 100 * k, time_of(k), "grid", grid_arrays(2, 2, 1, k));
+    }
+    out.write_snapshot("dem", 300, 0.3, "bonds", {});  // not a mesh: left out of the sidecar
+    out.close();
+    xml_ = read_text(dir_ / "run.xdmf");
+  }
+  ScratchDir dir_;
+  std::string xml_;
+};
+
+TEST_F(ResultsXdmf, IsWellFormed) {
+  ASSERT_FALSE(xml_.empty());
+  EXPECT_EQ(nesting_error(xml_), "");
+  EXPECT_TRUE(xml_.starts_with("<?xml"));
+}
+
+TEST_F(ResultsXdmf, ReferencesOnlyExistingDatasetsWithTheirShapes) {
+  const std::vector<DataItemRef> refs = data_items(xml_);
+  // dem: connectivity, position, radius, velocity, id per snapshot; fdm: zones, positions, 2 node vectors, stress.
+  EXPECT_EQ(refs.size(), 3U * 5U + 3U * 5U);
+  const h5::File in = h5::File::open_read_only(dir_ / "run.h5");
+  for (const DataItemRef& ref : refs) {
+    SCOPED_TRACE(ref.path);
+    EXPECT_EQ(ref.file, "run.h5");  // relative, so the pair can be moved together
+    ASSERT_TRUE(h5::exists(in, ref.path));
+    EXPECT_EQ(h5::dataset_shape(in, ref.path), ref.dimensions);
+  }
+}
+
+TEST_F(ResultsXdmf, PolyvertexConnectivityIsStoredOnce) {
+  const h5::File in = h5::File::open_read_only(dir_ / "run.h5");
+  EXPECT_EQ(h5::list_members(in, "/xdmf"), (std::vector<std::string>{"polyvertex_6"}));
+  EXPECT_EQ(h5::read_i64(in, "/xdmf/polyvertex_6"), (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5}));
+}
+
+TEST_F(ResultsXdmf, DescribesParticlesAndGridOverTime) {
+  EXPECT_EQ(count(xml_, "CollectionType=\"Temporal\""), 2U);
+  EXPECT_EQ(count(xml_, "<Time Value="), 6U);
+  EXPECT_EQ(count(xml_, "TopologyType=\"Polyvertex\" NumberOfElements=\"6\""), 3U);
+  EXPECT_EQ(count(xml_, "TopologyType=\"Hexahedron\" NumberOfElements=\"4\""), 3U);
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"zone_stress\" AttributeType=\"Tensor6\" Center=\"Cell\">"), 3U);
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"node_displacement\" AttributeType=\"Vector\" Center=\"Node\">"), 3U);
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"particle_radius\" AttributeType=\"Scalar\" Center=\"Node\">"), 3U);
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"particle_id\" AttributeType=\"Scalar\" Center=\"Node\">"), 3U);
+  EXPECT_EQ(count(xml_, "wall_force"), 0U);  // leading dimension is not the particle count
+}
+
+TEST_F(ResultsXdmf, TimesReadBackExactly) {
+  const std::regex time(R"re(<Time Value="([^"]+)"/>)re");
+  std::vector<double> times;
+  for (auto it = std::sregex_iterator(xml_.begin(), xml_.end(), time); it != std::sregex_iterator(); ++it)
+    times.push_back(std::strtod((*it)[1].str().c_str(), nullptr));
+  const std::vector<double> expected = {time_of(0), time_of(1), time_of(2), time_of(0), time_of(1), time_of(2)};  // dem, then fdm
+  EXPECT_EQ(times, expected);
+}
+
+TEST(XdmfDocument, LeavesOutSnapshotsWithoutGeometryAndEscapesNames) {
+  XdmfSnapshot no_geometry{"dem", "/snapshots/dem/000000", 0, 0.0, "particles", {{"particle_radius", protocol::DType::f64, {4}}}};
+  XdmfSnapshot odd_name{"a&b", "/snapshots/a&b/000000", 0, 0.0, "particles",
+                        {{"particle_position", protocol::DType::f64, {2, 3}}, {"x<y", protocol::DType::f64, {2}}}};
+  const std::vector<XdmfSnapshot> snapshots = {no_geometry, odd_name};
+  const std::string xml = xdmf_document("r.h5", snapshots);
+  EXPECT_EQ(nesting_error(xml), "");
+  EXPECT_EQ(count(xml, "<Grid Name=\"dem\""), 0U);  // an empty temporal collection would break readers
+  EXPECT_EQ(count(xml, "Name=\"a&amp;b\""), 1U);
+  EXPECT_EQ(count(xml, "Name=\"x&lt;y\""), 1U);
+}
+
+TEST(XdmfDocument, GridWithoutHexahedraIsShownAsPoints) {
+  XdmfSnapshot grid{"fdm", "/snapshots/fdm/000000", 0, 0.0, "grid",
+                    {{"node_position", protocol::DType::f64, {8, 3}}, {"zone_nodes", protocol::DType::i64, {1, 4}}}};
+  const std::vector<XdmfSnapshot> snapshots = {grid};
+  const std::string xml = xdmf_document("r.h5", snapshots);
+  EXPECT_EQ(count(xml, "TopologyType=\"Polyvertex\" NumberOfElements=\"8\""), 1U);
+  EXPECT_EQ(count(xml, "Hexahedron"), 0U);
+}
+
+TEST(XdmfDocument, UnwritableSidecarIsUserError) {
+  const std::vector<XdmfSnapshot> none;
+  EXPECT_THROW(write_xdmf("/nonexistent-dfc-dir/run.xdmf", "run.h5", none), UserError);
+}
+
+}  // namespace
+}  // namespace dfc::coupler

@@ -1,0 +1,118 @@
+// The fdm_server section: errors name the key path (DESIGN §7).
+#include <gtest/gtest.h>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/fdm/fdm_config.hpp"
+
+namespace dfc::fdm {
+namespace {
+
+nlohmann::json valid_section() {
+  return nlohmann::json::parse(R"({
+    "mesh": {"type": "box", "size_m": [1, 1, 2], "zones": [2, 2, 4]},
+    "material": {"model": "elastic", "density_kg_m3": 2000, "young_modulus_pa": 1e7, "poisson_ratio": 0.3},
+    "gravity_m_s2": [0, 0, -9.81],
+    "damping": {"local": 0.8},
+    "mass_scaling": true,
+    "threads": 1,
+    "boundaries": [{"group": "zmin", "condition": "fixed"}, {"group": "xmin", "condition": "roller"},
+                   {"group": "zmax", "condition": "pressure", "pressure_pa": 1000}],
+    "initial_stress": {"type": "geostatic", "k0": 0.5},
+    "coupling": {"role": "provider", "group": "zmax"}
+  })");
+}
+
+std::string key_path_of_error(const nlohmann::json& section) {
+  try {
+    (void)load_fdm_model(section);
+  } catch (const ConfigError& e) {
+    return e.key_path();
+  }
+  return "<no error>";
+}
+
+TEST(FdmConfig, ValidSectionBuildsTheModel) {
+  const FdmModel model = load_fdm_model(valid_section());
+  EXPECT_EQ(model.solver.mesh().gridpoint_count(), 3u * 3u * 5u);
+  EXPECT_EQ(model.coupling.role, CouplingRole::provider);
+  EXPECT_EQ(model.coupling.group, "zmax");
+  EXPECT_DOUBLE_EQ(model.solver.settings().gravity.z(), -9.81);
+  // Geostatic: the top zones are near zero stress, the bottom ones compressed.
+  EXPECT_LT(model.solver.zone_stress(0).zz, -1000.0);
+}
+
+TEST(FdmConfig, UnknownKeyIsNamed) {
+  nlohmann::json section = valid_section();
+  section["gravty_m_s2"] = {0, 0, -9.81};
+  EXPECT_EQ(key_path_of_error(section), "gravty_m_s2");
+  section = valid_section();
+  section["mesh"]["zonez"] = 3;
+  EXPECT_EQ(key_path_of_error(section), "mesh.zonez");
+  section = valid_section();
+  section["boundaries"][1]["pressure_pa"] = 5;  // only for pressure conditions
+  EXPECT_EQ(key_path_of_error(section), "boundaries[1].pressure_pa");
+}
+
+TEST(FdmConfig, NegativeSizeIsNamed) {
+  nlohmann::json section = valid_section();
+  section["mesh"]["size_m"] = {1, -1, 2};
+  EXPECT_EQ(key_path_of_error(section), "mesh.size_m");
+  section = valid_section();
+  section["mesh"]["zones"] = {2, 0, 4};
+  EXPECT_EQ(key_path_of_error(section), "mesh.zones");
+  section["mesh"] = {{"type", "cylinder_cavity"}, {"inner_radius_m", 2.0}, {"outer_radius_m", 1.0}, {"height_m", 1.0}};
+  EXPECT_EQ(key_path_of_error(section), "mesh.outer_radius_m");
+}
+
+TEST(FdmConfig, UnknownModelIsNamed) {
+  nlohmann::json section = valid_section();
+  section["material"]["model"] = "mohr_coulomb_typo";
+  try {
+    (void)load_fdm_model(section);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key_path(), "material.model");
+    EXPECT_NE(e.reason().find("\"elastic\""), std::string::npos) << "the error should list the known models: " << e.reason();
+  }
+}
+
+TEST(FdmConfig, BadMaterialAndGroupValuesAreNamed) {
+  nlohmann::json section = valid_section();
+  section["material"]["poisson_ratio"] = 0.5;
+  EXPECT_EQ(key_path_of_error(section), "material.poisson_ratio");
+  section = valid_section();
+  section["material"]["bulk_modulus_pa"] = 1e7;  // together with E/nu: ambiguous
+  EXPECT_EQ(key_path_of_error(section), "material.bulk_modulus_pa");
+  section = valid_section();
+  section["boundaries"][0]["group"] = "bottom";
+  EXPECT_EQ(key_path_of_error(section), "boundaries[0].group");
+  section = valid_section();
+  section["coupling"]["role"] = "leader";
+  EXPECT_EQ(key_path_of_error(section), "coupling.role");
+  section = valid_section();
+  section["damping"]["local"] = 1.0;
+  EXPECT_EQ(key_path_of_error(section), "damping.local");
+  section = valid_section();
+  section["gravity_m_s2"] = {1.0, 0.0, -9.81};  // geostatic needs gravity along −z
+  EXPECT_EQ(key_path_of_error(section), "initial_stress.type");
+}
+
+TEST(FdmConfig, RollerOnCylinderWallIsRadialAndAccepted) {
+  nlohmann::json section = valid_section();
+  section["mesh"] = nlohmann::json::parse(
+      R"({"type": "cylinder_cavity", "inner_radius_m": 0.5, "outer_radius_m": 2, "height_m": 1,
+          "zones_radial": 3, "zones_around": 12, "zones_vertical": 2, "grading_ratio": 1.2})");
+  section["boundaries"] = nlohmann::json::parse(R"([{"group": "outer", "condition": "roller"}, {"group": "bottom", "condition": "fixed"}])");
+  section["coupling"]["group"] = "inner";
+  EXPECT_NO_THROW((void)load_fdm_model(section));
+}
+
+TEST(FdmConfig, HelpListsModelsWithParametersAndUnits) {
+  const std::string help = fdm_config_help();
+  for (const char* expected : {"\"elastic\"", "young_modulus_pa [Pa]", "poisson_ratio [-]", "bulk_modulus_pa [Pa]", "shear_modulus_pa [Pa]",
+                               "cylinder_cavity", "grading_ratio", "mass_scaling", "initial_stress", "coupling"})
+    EXPECT_NE(help.find(expected), std::string::npos) << expected;
+}
+
+}  // namespace
+}  // namespace dfc::fdm

@@ -1,0 +1,32 @@
+#pragma once
+// Shared set-up for the FDM tests: an elastic material and a run-to-equilibrium loop.
+#include <memory>
+
+#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/fdm/solver.hpp"
+
+namespace dfc::fdm::test {
+
+inline Material elastic_material(double young_modulus, double poisson_ratio, double density) {
+  return {density, std::make_unique<ElasticModel>(ElasticModel::from_young_poisson(young_modulus, poisson_ratio))};
+}
+
+/// Steps until the unbalanced-force ratio drops below `target` (after a few
+/// steps, so that a load has been felt). Returns the steps taken, or -1.
+inline int run_to_equilibrium(Solver& solver, double dt, double target, int max_steps) {
+  constexpr int kMinimumSteps = 10;
+  for (int step = 1; step <= max_steps; ++step) {
+    solver.step(dt);
+    if (step >= kMinimumSteps && solver.unbalanced_force_ratio() < target) return step;
+  }
+  return -1;
+}
+
+inline SolverSettings quiet_settings(Vec3 gravity = Vec3::Zero()) {
+  SolverSettings settings;
+  settings.gravity = gravity;
+  settings.threads = 1;  // the test machine is shared; results do not depend on it
+  return settings;
+}
+
+}  // namespace dfc::fdm::test

@@ -1,0 +1,187 @@
+#!/usr/bin/env python3
+"""Plot the time series of a dfc results file (HDF5, format "dfc-results-1") as PNGs.
+
+    plot_results.py RESULTS.h5 [--out DIR]
+
+Writes, for the columns present under /timeseries (either name is accepted;
+the second is what the coupler records: "<slot>_<monitor>" and its own columns):
+  pile_force_displacement.png  pile force against pile displacement
+                               (pile_displacement_m | dem_pile_displacement_m,
+                                pile_force_n | dem_pile_force_n)
+  interface_force.png          interface force of both sides against time
+                               (interface_force_<side>_<axis> | interface_force_on_<side>_<axis>,
+                                side dem or continuum, axis x, y, z)
+  unbalanced_force.png         unbalanced-force ratios against time, log scale
+                               (ufr_<side> | <side>_unbalanced_force_ratio)
+A plot whose columns are absent is skipped. The time axis is time_s if present,
+else step, else exchange, else the row number. Prints the path of every file written.
+The file may still be open in a running coupler: it is read without the HDF5
+file lock, and shows what the coupler last flushed.
+
+Needs numpy, matplotlib and h5py (Debian: python3-numpy python3-matplotlib python3-h5py).
+"""
+import argparse
+import os
+import sys
+
+# A writer that holds the HDF5 file lock would stop h5py from opening a run in
+# progress; reading without the lock avoids that. Must be set before h5py loads.
+os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
+
+try:
+    import h5py
+    import matplotlib
+
+    matplotlib.use("Agg")  # files only; no display needed
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as missing:  # pragma: no cover - depends on the machine
+    # The Debian packages install for /usr/bin/python3; a python3 found first on
+    # PATH (pyenv, venv) may not have them, so try that interpreter once.
+    debian_python = "/usr/bin/python3"
+    if os.path.realpath(sys.executable) != os.path.realpath(debian_python) and os.path.exists(debian_python) \
+            and not os.environ.get("DFC_PLOT_REEXEC"):
+        os.environ["DFC_PLOT_REEXEC"] = "1"
+        os.execv(debian_python, [debian_python, os.path.abspath(__file__), *sys.argv[1:]])
+    sys.exit(f"plot_results.py: {missing}; install python3-numpy python3-matplotlib python3-h5py")
+
+SIDES = ("dem", "continuum")
+AXES = ("x", "y", "z")
+
+
+def read_series(path):
+    """All /timeseries columns as {name: (values, unit)}."""
+    series = {}
+    with h5py.File(path, "r") as f:
+        group = f.get("timeseries")
+        if group is None:
+            return series
+        for name, dataset in group.items():
+            if isinstance(dataset, h5py.Dataset) and dataset.ndim == 1:
+                unit = dataset.attrs.get("unit", "")
+                if isinstance(unit, bytes):
+                    unit = unit.decode("utf-8")
+                series[name] = (np.asarray(dataset[...], dtype=float), str(unit))
+    return series
+
+
+def column(series, *names):
+    """Values of the first of `names` present, or None."""
+    for name in names:
+        if name in series:
+            return series[name][0]
+    return None
+
+
+def pile_columns():
+    return ("pile_displacement_m", "dem_pile_displacement_m"), ("pile_force_n", "dem_pile_force_n")
+
+
+def interface_columns(side, axis):
+    return (f"interface_force_{side}_{axis}", f"interface_force_on_{side}_{axis}")
+
+
+def ufr_columns(side):
+    return (f"ufr_{side}", f"{side}_unbalanced_force_ratio")
+
+
+def time_axis(series):
+    for name, label in (("time_s", "time [s]"), ("step", "step"), ("exchange", "exchange")):
+        if name in series:
+            return series[name][0], label
+    length = max((len(values) for values, _ in series.values()), default=0)
+    return np.arange(length, dtype=float), "row"
+
+
+def save(fig, out_dir, name):
+    path = os.path.join(out_dir, name)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def plot_pile(series, out_dir):
+    displacement_names, force_names = pile_columns()
+    displacement = column(series, *displacement_names)
+    force = column(series, *force_names)
+    if displacement is None or force is None:
+        return None
+    n = min(len(displacement), len(force))
+    displacement, force = displacement[:n], force[:n]
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    # Geotechnical convention: penetration downwards, in mm; force in kN.
+    ax.plot(force / 1e3, displacement * 1e3, color="tab:blue")
+    ax.set_xlabel("pile force [kN]")
+    ax.set_ylabel("pile displacement [mm]")
+    ax.invert_yaxis()
+    ax.grid(True, alpha=0.3)
+    ax.set_title("Pile load-displacement")
+    return save(fig, out_dir, "pile_force_displacement.png")
+
+
+def plot_interface(series, out_dir):
+    present = [(side, axis, column(series, *interface_columns(side, axis))) for side in SIDES for axis in AXES]
+    present = [entry for entry in present if entry[2] is not None]
+    if not present:
+        return None
+    t, t_label = time_axis(series)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    colours = {"x": "tab:red", "y": "tab:green", "z": "tab:blue"}
+    for side, axis, values in present:
+        n = min(len(t), len(values))
+        # Action and reaction: the continuum side is drawn dashed on top of the DEM side.
+        ax.plot(t[:n], values[:n], color=colours[axis], linestyle="-" if side == "dem" else "--", label=f"{side} {axis}")
+    ax.set_xlabel(t_label)
+    ax.set_ylabel("interface force [N]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(ncol=2, fontsize="small")
+    ax.set_title("Interface force, both sides")
+    return save(fig, out_dir, "interface_force.png")
+
+
+def plot_unbalanced(series, out_dir):
+    present = [(side, column(series, *ufr_columns(side))) for side in SIDES]
+    present = [entry for entry in present if entry[1] is not None]
+    if not present:
+        return None
+    t, t_label = time_axis(series)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for side, values in present:
+        n = min(len(t), len(values))
+        positive = values[:n] > 0  # a log axis cannot show zeros (a rigid reference side reports 0)
+        ax.plot(t[:n][positive], values[:n][positive], label=side)
+    ax.set_yscale("log")
+    ax.set_xlabel(t_label)
+    ax.set_ylabel("unbalanced-force ratio [-]")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    ax.set_title("Unbalanced-force ratio")
+    return save(fig, out_dir, "unbalanced_force.png")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description="Plot a dfc results file (HDF5) as PNGs.")
+    parser.add_argument("results", help="results file written by the coupler (.h5)")
+    parser.add_argument("--out", default=None, help="output directory (default: next to the results file)")
+    args = parser.parse_args(argv)
+
+    if not os.path.isfile(args.results):
+        sys.exit(f"plot_results.py: no such file '{args.results}'")
+    out_dir = args.out if args.out else (os.path.dirname(os.path.abspath(args.results)))
+    os.makedirs(out_dir, exist_ok=True)
+    try:
+        series = read_series(args.results)
+    except OSError as error:
+        sys.exit(f"plot_results.py: cannot read '{args.results}' as HDF5 ({error})")
+
+    written = [path for path in (plot_pile(series, out_dir), plot_interface(series, out_dir), plot_unbalanced(series, out_dir)) if path]
+    if not written:
+        print(f"plot_results.py: no plottable columns in '{args.results}' (have: {', '.join(sorted(series)) or 'none'})")
+    for path in written:
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
