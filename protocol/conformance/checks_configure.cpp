@@ -1,5 +1,6 @@
 // SPEC.md §4.2, §5.1: ordering in the greeted state, a rejected section
 // leaving the server greeted, the scenario hash and the configured info.
+#include <algorithm>
 #include <cmath>
 
 #include "check.hpp"
@@ -36,6 +37,24 @@ bool positive_number(const nlohmann::json& value) {
   return value.is_number() && std::isfinite(value.get<double>()) && value.get<double>() > 0.0;
 }
 
+// A server whose role is chosen by its section (fdm_server: provider or
+// driven) announces every capability it might serve in hello_ok, and may
+// list the ones this configured session serves in info.capabilities. Only
+// a subset makes sense; later checks then follow the narrowed list.
+void narrow_capabilities(Context& context, const nlohmann::json& info) {
+  const auto listed = info.find("capabilities");
+  if (listed == info.end()) return;
+  expect(listed->is_array(), "configured.info.capabilities must be an array of strings, got " + listed->dump());
+  const auto announced = context.hello_reply->body.value("capabilities", nlohmann::json::array());
+  for (const auto& c : *listed)
+    expect(c.is_string() && std::find(announced.begin(), announced.end(), c) != announced.end(),
+           "configured.info.capabilities lists " + c.dump() + ", which hello_ok did not announce");
+  const auto serves = [&](const char* name) { return std::find(listed->begin(), listed->end(), name) != listed->end(); };
+  context.provides_interface = serves(protocol::capability::provides_interface);
+  context.accepts_interface = serves(protocol::capability::accepts_interface);
+  context.snapshot = serves(protocol::capability::snapshot);
+}
+
 void configure_is_accepted_with_hash(Context& context) {
   const std::string& section = context.options().section_json;
   const protocol::Message reply = context.request(protocol::type::configure, {{"section_json", section}});
@@ -50,6 +69,7 @@ void configure_is_accepted_with_hash(Context& context) {
          "configured.info.dt_suggested must be a positive number of seconds, got " + info.value("dt_suggested", nlohmann::json()).dump());
   expect(info.contains("dt_max") && (info["dt_max"].is_null() || positive_number(info["dt_max"])),
          "configured.info.dt_max must be a positive number or null, got " + info.value("dt_max", nlohmann::json()).dump());
+  narrow_capabilities(context, info);
   context.dt = info["dt_suggested"].get<double>();
   if (info["dt_max"].is_number()) context.dt = std::min(context.dt, info["dt_max"].get<double>());
   context.step = 0;

@@ -34,7 +34,8 @@ void Context::start_server() {
   }
   const auto line = server_->read_line(options_.timeout);
   if (!line) {
-    if (const auto status = server_->poll_exit())
+    // stdout closed early usually means the process is exiting: give it a moment to say how.
+    if (const auto status = server_->wait_exit(std::chrono::milliseconds(500)))
       throw CheckFailure("the server " + ChildProcess::describe_status(*status) + " without printing 'DFC-LISTENING <endpoint>'");
     throw CheckFailure("no line 'DFC-LISTENING <endpoint>' on stdout within " + std::to_string(options_.timeout.count()) +
                        " ms (is stdout flushed after it?)");

@@ -36,7 +36,10 @@ void expect_error(const protocol::Message& reply, std::initializer_list<std::str
 
 std::string shape_text(const std::vector<std::int64_t>& shape) {
   std::string text = "[";
-  for (std::size_t i = 0; i < shape.size(); ++i) text += (i ? "," : "") + (shape[i] < 0 ? std::string("*") : std::to_string(shape[i]));
+  for (std::size_t i = 0; i < shape.size(); ++i) {
+    if (i > 0) text += ',';
+    text += shape[i] < 0 ? std::string("*") : std::to_string(shape[i]);
+  }
   return text + "]";
 }
 

@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <fstream>
-#include <iterator>
-#include <sstream>
 #include <string_view>
 
 #include "dfc/common/errors.hpp"
@@ -13,9 +11,14 @@ namespace dfc::conformance {
 namespace {
 
 std::string read_file_bytes(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) throw UserError("cannot read the configure section '" + path + "'; --config needs a readable JSON file");
-  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  // Byte for byte: the server hashes exactly what it receives (SPEC.md §4.2).
+  std::string bytes(static_cast<std::size_t>(file.tellg()), '\0');
+  file.seekg(0);
+  if (!file.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+    throw UserError("cannot read the configure section '" + path + "'");
+  return bytes;
 }
 
 std::chrono::milliseconds parse_seconds(const std::string& text) {

@@ -1,5 +1,7 @@
 #include "dfc/protocol/client.hpp"
 
+#include <cstdio>
+
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -9,6 +11,12 @@ namespace {
 constexpr auto kSlice = std::chrono::milliseconds(100);
 
 std::string shape_mismatch(const std::string& label, const std::string& what) { return label + " sent " + what; }
+
+std::string format_seconds(std::chrono::milliseconds duration) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g s", static_cast<double>(duration.count()) / 1000.0);
+  return text;
+}
 }  // namespace
 
 Connection::Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits)
@@ -37,7 +45,7 @@ Message Connection::request_raw(Message request, std::chrono::milliseconds deadl
   send_message(socket_, request);
   auto reply = await_reply(request.seq, deadline);
   if (!reply)
-    throw TimeoutError(label_ + " did not answer '" + request.type + "' within " + std::to_string(static_cast<double>(deadline.count()) / 1000.0).substr(0, 6) + " s");
+    throw TimeoutError(label_ + " did not answer '" + request.type + "' within " + format_seconds(deadline));
   return *reply;
 }
 

@@ -18,6 +18,9 @@ Message make_error(std::optional<std::int64_t> request_seq, ErrorCode code, cons
 std::optional<std::pair<int, int>> parse_version(std::string_view text) {
   const auto dot = text.find('.');
   if (dot == std::string_view::npos || dot == 0 || dot + 1 >= text.size()) return std::nullopt;
+  // from_chars would take a sign ("-0.0", "1.-0"); a version is digits only.
+  const auto is_digit = [](char c) { return c >= '0' && c <= '9'; };
+  if (!is_digit(text.front()) || !is_digit(text[dot + 1])) return std::nullopt;
   int major = 0;
   int minor = 0;
   const auto* end = text.data() + text.size();

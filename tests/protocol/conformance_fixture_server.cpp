@@ -1,0 +1,36 @@
+// conformance_fixture_server: a protocol v1 server around FixtureBackend,
+// for the tests of dfc_conformance. `--break throw|shape|crash|hang` makes
+// it violate the contract on purpose; every other option is the generic
+// server's (--bind, --help, --version, ...).
+#include <cstring>
+#include <iostream>
+#include <memory>
+
+#include "dfc/protocol/server.hpp"
+#include "fixture_backend.hpp"
+
+int main(int argc, char** argv) {
+  using dfc::protocol::testing::Breakage;
+  Breakage breakage = Breakage::none;
+  std::vector<char*> server_args{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--break") == 0 && i + 1 < argc) {
+      const auto parsed = dfc::protocol::testing::breakage_from_name(argv[++i]);
+      if (!parsed) {
+        std::cerr << "conformance_fixture_server: --break takes throw, shape, crash or hang, not '" << argv[i] << "'\n";
+        return 2;
+      }
+      breakage = *parsed;
+    } else {
+      server_args.push_back(argv[i]);
+    }
+  }
+  server_args.push_back(nullptr);  // argv convention: argv[argc] is null
+
+  const dfc::protocol::ServerProgram program{
+      "conformance_fixture_server",
+      "a trivial provides_interface continuum for testing dfc_conformance (--break MODE breaks it on purpose)",
+      "  side   integer >= 2, default 2: the interface is a side x side grid of nodes 1 m apart in z = 0",
+      [breakage] { return std::make_unique<dfc::protocol::testing::FixtureBackend>(breakage); }};
+  return dfc::protocol::run_server_main(static_cast<int>(server_args.size() - 1), server_args.data(), program);
+}

@@ -1,0 +1,94 @@
+#include "fixture_backend.hpp"
+
+#include <array>
+#include <chrono>
+#include <cstdlib>
+#include <stdexcept>
+#include <thread>
+
+#include "dfc/common/config_reader.hpp"
+#include "dfc/common/version.hpp"
+
+namespace dfc::protocol::testing {
+
+namespace {
+constexpr double kNodeMass = 1.0;  // kg, before any lumped mass from the other side
+}
+
+std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
+  if (name == "throw") return Breakage::throw_in_advance;
+  if (name == "shape") return Breakage::wrong_output_shape;
+  if (name == "crash") return Breakage::crash_in_advance;
+  if (name == "hang") return Breakage::hang_in_advance;
+  return std::nullopt;
+}
+
+SolverIdentity FixtureBackend::identity() const {
+  return {"conformance_fixture_server", std::string(project_version()), "continuum", {capability::provides_interface, capability::snapshot}};
+}
+
+nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
+  ConfigReader config(section, "");
+  const std::int64_t side = config.integer("side", 2, 2);
+  config.finish();
+  mesh_ = {};
+  for (std::int64_t j = 0; j < side; ++j)
+    for (std::int64_t i = 0; i < side; ++i) {
+      mesh_.node_ids.push_back(1000 + j * side + i);
+      mesh_.coordinates.insert(mesh_.coordinates.end(), {double(i), double(j), 0.0});
+    }
+  for (std::int64_t j = 0; j + 1 < side; ++j)
+    for (std::int64_t i = 0; i + 1 < side; ++i) {
+      const std::int64_t a = j * side + i;
+      // Two triangles per cell, counter-clockwise seen from +z: normals point up, out of the body below.
+      mesh_.facets.insert(mesh_.facets.end(), {a, a + 1, a + side + 1, a, a + side + 1, a + side});
+    }
+  velocity_.assign(mesh_.coordinates.size(), 0.0);
+  displacement_.assign(mesh_.coordinates.size(), 0.0);
+  return {{"dt_suggested", 1e-3}, {"dt_max", 1e-2}};
+}
+
+AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
+  switch (breakage_) {
+    case Breakage::throw_in_advance: throw std::runtime_error("deliberately broken fixture: advance throws");
+    case Breakage::crash_in_advance: std::abort();
+    case Breakage::hang_in_advance: std::this_thread::sleep_for(std::chrono::hours(1)); break;
+    case Breakage::none:
+    case Breakage::wrong_output_shape: break;
+  }
+  const std::int64_t n = mesh_.node_count();
+  const std::vector<double> force = require_f64(request.inputs, field::force, n, 3);
+  std::vector<double> lumped(static_cast<std::size_t>(n), 0.0);
+  if (find_array(request.inputs, field::mass) != nullptr) lumped = require_f64(request.inputs, field::mass, n, 0);
+  // Explicit Euler per node; good enough for a protocol fixture.
+  const double duration = request.dt * double(request.n_steps);
+  std::array<double, 3> received{0.0, 0.0, 0.0};
+  double kinetic = 0.0;
+  for (std::size_t k = 0; k < force.size(); ++k) {
+    const double mass = kNodeMass + lumped[k / 3];
+    velocity_[k] += force[k] / mass * duration;
+    displacement_[k] += velocity_[k] * duration;
+    received[k % 3] += force[k];
+    kinetic += 0.5 * mass * velocity_[k] * velocity_[k];
+  }
+  monitors_ = {{"unbalanced_force_ratio", 0.0}, {"kinetic_energy_j", kinetic}, {"interface_force_received", received}};
+  AdvanceResult result;
+  result.monitors = monitors_;
+  if (breakage_ == Breakage::wrong_output_shape) {
+    result.outputs.push_back(Array::from_f64(field::velocity, {n, 2}, std::span(velocity_).first(static_cast<std::size_t>(2 * n))));
+  } else {
+    result.outputs.push_back(Array::from_f64(field::velocity, {n, 3}, velocity_));
+  }
+  result.outputs.push_back(Array::from_f64(field::displacement, {n, 3}, displacement_));
+  return result;
+}
+
+std::vector<Array> FixtureBackend::snapshot(std::string& kind) {
+  kind = "grid";
+  const std::int64_t n = mesh_.node_count();
+  return {Array::from_f64("node_position", {n, 3}, mesh_.coordinates), Array::from_f64("node_displacement", {n, 3}, displacement_),
+          Array::from_f64("node_velocity", {n, 3}, velocity_), Array::from_i64("zone_nodes", {0, 8}, {}),
+          Array::from_f64("zone_stress", {0, 6}, {})};
+}
+
+}  // namespace dfc::protocol::testing

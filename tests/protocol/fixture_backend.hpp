@@ -1,0 +1,44 @@
+#pragma once
+// FixtureBackend: the smallest honest continuum, for testing dfc_conformance
+// itself. Its interface is a unit-spaced square grid of side × side nodes in
+// z = 0; each node has 1 kg and moves under the force it is given. A
+// Breakage makes it violate the contract in one known way, so a test can
+// show the checker notices.
+#include <optional>
+#include <string_view>
+
+#include "dfc/protocol/solver_backend.hpp"
+
+namespace dfc::protocol::testing {
+
+enum class Breakage {
+  none,
+  throw_in_advance,    ///< advance throws std::runtime_error (an INTERNAL error reply)
+  wrong_output_shape,  ///< advance returns velocity [n,2] instead of [n,3]
+  crash_in_advance,    ///< advance aborts the process
+  hang_in_advance      ///< advance never returns
+};
+
+/// "throw", "shape", "crash", "hang"; nullopt for anything else.
+[[nodiscard]] std::optional<Breakage> breakage_from_name(std::string_view name) noexcept;
+
+class FixtureBackend final : public SolverBackend {
+ public:
+  explicit FixtureBackend(Breakage breakage = Breakage::none) : breakage_(breakage) {}
+
+  [[nodiscard]] SolverIdentity identity() const override;
+  nlohmann::json configure(const nlohmann::json& section) override;
+  InterfaceMesh interface_mesh() override { return mesh_; }
+  AdvanceResult advance(const AdvanceRequest& request) override;
+  [[nodiscard]] nlohmann::json monitors() override { return monitors_; }
+  [[nodiscard]] std::vector<Array> snapshot(std::string& kind) override;
+
+ private:
+  Breakage breakage_;
+  InterfaceMesh mesh_;
+  std::vector<double> velocity_;      ///< m/s, 3 per node
+  std::vector<double> displacement_;  ///< m, 3 per node
+  nlohmann::json monitors_ = nlohmann::json::object();
+};
+
+}  // namespace dfc::protocol::testing
