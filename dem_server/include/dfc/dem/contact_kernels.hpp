@@ -1,0 +1,126 @@
+#pragma once
+// The per-contact loops, templated on the contact law (ContactLawKernel).
+//
+// The law is resolved once per step (std::visit in contact_forces.cpp); inside
+// the loop `law.evaluate` is an inlined call on a value type. Each loop writes
+// only its own contact's slots, so it is parallel without atomics and its
+// results do not depend on the thread count.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "dfc/dem/contact_lists.hpp"
+#include "dfc/dem/parallel.hpp"
+#include "dfc/dem/contact_model.hpp"
+#include "dfc/dem/particle_store.hpp"
+#include "dfc/dem/triangle_geometry.hpp"
+#include "dfc/dem/wall.hpp"
+
+namespace dfc::dem {
+
+/// A contact whose overlap exceeds this fraction of the smaller radius means
+/// the run has become unstable (soft contacts stay at a few per cent).
+inline constexpr double max_overlap_fraction = 0.5;
+
+/// Evaluates every pair candidate into outputs[0, pairs.size()).
+/// Returns true if some overlap exceeded max_overlap_fraction.
+template <ContactLawKernel Law>
+bool evaluate_pair_contacts(const Law& law, const ParticleStore& p, PairContacts& pairs, ContactOutputs& out, double dt, int threads) {
+  const auto n = static_cast<std::int64_t>(pairs.size());
+  bool excessive = false;
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items) reduction(|| : excessive)
+  for (std::int64_t kk = 0; kk < n; ++kk) {
+    const auto k = std::size_t(kk);
+    const std::uint32_t i = pairs.first[k];
+    const std::uint32_t j = pairs.second[k];
+    double* history = pairs.row(k);
+    const Vec3 xi = p.position[i];
+    const Vec3 d = p.position[j] - xi;
+    const double ri = p.radius[i];
+    const double rj = p.radius[j];
+    const double reach = ri + rj;
+    const double dist2 = norm2(d);
+    if (!Law::acts_across_gap && dist2 >= reach * reach) {
+      out.force[k] = Vec3{};
+      out.point[k] = xi;
+      if constexpr (Law::has_couple) out.couple[k] = Vec3{};
+      law.separate(history);
+      continue;
+    }
+    const double dist = std::sqrt(dist2);
+    // Coincident centres have no direction; any fixed one keeps the run deterministic.
+    const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
+    ContactKinematics kin;
+    kin.normal = normal;
+    kin.overlap = reach - dist;
+    excessive = excessive || kin.overlap > max_overlap_fraction * std::min(ri, rj);
+    // Contact point in the middle of the overlap (PFC ball–ball convention).
+    const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
+    const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
+    const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - p.position[j]);
+    kin.relative_velocity = vj - vi;
+    kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
+    kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+    kin.radius_first = ri;
+    kin.radius_second = rj;
+    kin.dt = dt;
+    const ContactForce f = law.evaluate(kin, history);
+    out.force[k] = f.on_first;
+    out.point[k] = point;
+    if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
+  }
+  return excessive;
+}
+
+/// Evaluates the candidates of one wall into outputs[offset, offset + size).
+/// select_wall_contacts must have run on this wall for the current positions
+/// (it wrote the contact points into out.point). Returns true on an excessive overlap.
+template <ContactLawKernel Law>
+bool evaluate_wall_contacts(const Law& law, const ParticleStore& p, const Wall& wall, WallContacts& contacts, ContactOutputs& out,
+                            std::size_t offset, double dt, int threads) {
+  const auto n = static_cast<std::int64_t>(contacts.size());
+  bool excessive = false;
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items) reduction(|| : excessive)
+  for (std::int64_t kk = 0; kk < n; ++kk) {
+    const auto k = std::size_t(kk);
+    const std::size_t o = offset + k;
+    const std::uint32_t i = contacts.particle[k];
+    double* history = contacts.row(k);
+    const double ri = p.radius[i];
+    const double overlap = ri - contacts.distance[k];
+    if (contacts.selected[k] == 0 || (!Law::acts_across_gap && overlap <= 0.0)) {
+      out.force[o] = Vec3{};
+      if constexpr (Law::has_couple) out.couple[o] = Vec3{};
+      law.separate(history);
+      continue;
+    }
+    const Facet& f = wall.facets[contacts.facet[k]];
+    const Vec3 xi = p.position[i];
+    const Vec3 point = out.point[o];
+    Vec3 normal;
+    if (contacts.distance[k] > 0.0) {
+      normal = (1.0 / contacts.distance[k]) * (point - xi);
+    } else {  // centre on the facet: push along the facet normal (either side; fixed for determinism)
+      normal = triangle_normal(wall.vertices[f[0]], wall.vertices[f[1]], wall.vertices[f[2]]);
+    }
+    const auto& w = contacts.weights[k];
+    const Vec3 wall_velocity = w[0] * wall.vertex_velocity[f[0]] + w[1] * wall.vertex_velocity[f[1]] + w[2] * wall.vertex_velocity[f[2]];
+    ContactKinematics kin;
+    kin.normal = normal;
+    kin.overlap = overlap;
+    excessive = excessive || overlap > max_overlap_fraction * ri;
+    kin.relative_velocity = wall_velocity - (p.velocity[i] + cross(p.angular_velocity[i], point - xi));
+    kin.relative_angular_velocity = -p.angular_velocity[i];
+    kin.effective_mass = p.mass[i];
+    kin.radius_first = ri;
+    kin.radius_second = 0.0;
+    kin.dt = dt;
+    const ContactForce result = law.evaluate(kin, history);
+    out.force[o] = result.on_first;
+    if constexpr (Law::has_couple) out.couple[o] = result.couple_on_first;
+  }
+  return excessive;
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,65 @@
+#pragma once
+// The contact-law registry: keyword -> law (DESIGN §5, STYLE "one registry
+// table per plug-in family"). Parsing, --help text and upscaling all read the
+// same table, so a law is documented where it is declared.
+//
+// Adding a law: write the law type (see linear_law.hpp and ContactLawKernel),
+// add it to the ContactLaw variant below and one entry to the table in
+// contact_law_registry.cpp. Nothing else changes.
+#include <cstddef>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dfc/common/config_reader.hpp"
+#include "dfc/dem/contact_model.hpp"
+#include "dfc/dem/linear_law.hpp"
+
+namespace dfc::dem {
+
+/// Every law the kernels are compiled for. Dispatch: std::visit once per step.
+using ContactLaw = std::variant<LinearLaw>;
+
+struct ContactLawInfo {
+  std::string keyword;
+  std::string summary;         ///< one line
+  std::string reference;       ///< where the equations come from
+  std::string upscaling_rule;  ///< one sentence: what stays fixed, what scales with S
+  std::vector<ParameterSpec> parameters;
+  std::vector<HistoryColumn> history;
+  ContactLaw (*make)(std::span<const double> values) = nullptr;  ///< values in `parameters` order
+};
+
+[[nodiscard]] const std::vector<ContactLawInfo>& contact_law_registry();
+/// nullptr if no law has this keyword.
+[[nodiscard]] const ContactLawInfo* find_contact_law(std::string_view keyword) noexcept;
+
+/// A law chosen and parameterised by a scenario.
+struct ContactLawSetting {
+  const ContactLawInfo* info = nullptr;
+  std::vector<double> values;  ///< in info->parameters order
+  ContactLaw law;
+
+  [[nodiscard]] std::size_t history_size() const;
+  [[nodiscard]] bool has_couple() const;
+  [[nodiscard]] StiffnessBound stiffness_bound() const;
+};
+
+/// Reads {"law": keyword (default "linear"), <parameters>...} and finishes the
+/// object. Unknown law -> ConfigError on "<path>.law" listing the registry.
+[[nodiscard]] ContactLawSetting read_contact_law(ConfigReader cfg);
+/// The same from a JSON object, e.g. {"law":"linear","kn_n_m":1e5,"ks_n_m":1e5};
+/// key paths in errors start at `path`.
+[[nodiscard]] ContactLawSetting make_contact_law(const nlohmann::json& object, const std::string& path = "contact");
+
+/// Parameters of `setting` for particles upscaled by S (> 0): p * S^exponent.
+[[nodiscard]] ContactLawSetting upscale(const ContactLawSetting& setting, double scale_factor);
+
+/// Human-readable table of the registry (for --help).
+[[nodiscard]] std::string describe_contact_laws();
+
+}  // namespace dfc::dem

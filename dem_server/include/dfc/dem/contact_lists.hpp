@@ -1,0 +1,103 @@
+#pragma once
+// Contact candidate lists, their per-contact history, the per-contact force
+// storage and the particle -> contact incidence used for the gather.
+//
+// Why this shape: forces are computed per contact in parallel into
+// ContactOutputs (no two threads write the same slot), then every particle
+// sums its own contacts in the fixed order of Incidence. No atomics, no
+// thread-dependent summation order: results are bit-identical for any thread
+// count (DESIGN §5 "Deterministic").
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "dfc/dem/particle_store.hpp"
+
+namespace dfc::dem {
+
+/// Particle–particle candidates. Oriented by id (id[first] < id[second]) so a
+/// contact's history keeps its meaning when slots are re-sorted.
+struct PairContacts {
+  std::vector<std::uint32_t> first;
+  std::vector<std::uint32_t> second;
+  std::size_t stride = 0;       ///< history doubles per contact (the law's history_size)
+  std::vector<double> history;  ///< size() * stride, row per contact
+
+  [[nodiscard]] std::size_t size() const noexcept { return first.size(); }
+  [[nodiscard]] double* row(std::size_t k) noexcept { return history.data() + k * stride; }
+};
+
+/// Particle–facet candidates of one wall, sorted by particle then facet.
+/// A group is the run of one particle's facets: the facet-selection rule
+/// (wall_contacts.hpp) looks at a whole group.
+struct WallContacts {
+  std::vector<std::uint32_t> particle;
+  std::vector<std::uint32_t> facet;
+  std::vector<std::uint32_t> group_start;  ///< groups + 1 entries
+  std::size_t stride = 0;
+  std::vector<double> history;
+
+  // Filled every step by the geometry pass.
+  std::vector<std::array<double, 3>> weights;  ///< barycentric weights of the closest point
+  std::vector<double> distance;                ///< m, centre to closest point
+  std::vector<std::uint8_t> feature;           ///< TriangleFeature of the closest point
+  std::vector<std::uint8_t> selected;          ///< 1: this facet carries the contact (edge/vertex duplicates are 0)
+
+  [[nodiscard]] std::size_t size() const noexcept { return particle.size(); }
+  [[nodiscard]] std::size_t group_count() const noexcept { return group_start.empty() ? 0 : group_start.size() - 1; }
+  [[nodiscard]] double* row(std::size_t k) noexcept { return history.data() + k * stride; }
+  /// Sets the lists from sorted (particle, facet) pairs; history zeroed.
+  void assign(std::span<const std::pair<std::uint32_t, std::uint32_t>> candidates, std::size_t history_stride);
+};
+
+/// Per-contact results of the last force evaluation, pairs first, then each
+/// wall's contacts at its offset.
+struct ContactOutputs {
+  std::vector<Vec3> force;   ///< N, on the first body (the particle for wall contacts)
+  std::vector<Vec3> point;   ///< m, where it acts
+  std::vector<Vec3> couple;  ///< N m, pure couple on the first body; empty unless a law has one
+
+  void resize(std::size_t n, bool with_couple);
+};
+
+/// For every particle the contacts it takes part in, in increasing contact
+/// order. entry = contact << 1 | role, role 1 = the particle is the second body.
+struct Incidence {
+  std::vector<std::uint32_t> start;  ///< particles + 1
+  std::vector<std::uint32_t> entry;
+};
+
+/// `wall_offsets[w]` is where wall w's contacts start in ContactOutputs.
+[[nodiscard]] Incidence build_incidence(std::size_t particle_count, const PairContacts& pairs, std::span<const WallContacts* const> walls,
+                                        std::span<const std::size_t> wall_offsets);
+
+/// History rows keyed by two stable integers ((id, id) for pairs, (id, facet)
+/// for wall contacts), kept across a neighbour-list rebuild.
+class HistoryArchive {
+ public:
+  using Key = std::array<std::int64_t, 2>;
+  explicit HistoryArchive(std::size_t stride) : stride_(stride) {}
+  /// Rows that are all zero are fresh contacts and are not kept.
+  void add(Key key, const double* row);
+  /// Sorts the keys; call once after the last add().
+  void seal();
+  /// The row stored under `key`, or nullptr.
+  [[nodiscard]] const double* find(Key key) const;
+  [[nodiscard]] std::size_t size() const noexcept { return keys_.size(); }
+
+ private:
+  std::size_t stride_;
+  std::vector<Key> keys_;
+  std::vector<double> rows_;
+  std::vector<std::uint32_t> sorted_;
+};
+
+[[nodiscard]] HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles);
+[[nodiscard]] HistoryArchive archive_history(const WallContacts& contacts, const ParticleStore& particles);
+/// Copies archived rows into the matching contacts of the new lists (others stay zero).
+void restore_history(PairContacts& pairs, const ParticleStore& particles, const HistoryArchive& archive, int threads);
+void restore_history(WallContacts& contacts, const ParticleStore& particles, const HistoryArchive& archive, int threads);
+
+}  // namespace dfc::dem

@@ -1,0 +1,78 @@
+#pragma once
+// What every contact law sees and returns, and what it must declare.
+//
+// A law is a small value type (its parameters) with an inline `evaluate`
+// called once per contact by a kernel templated on the law
+// (contact_kernels.hpp): the law is chosen once per step by std::visit, never
+// by a virtual call per contact. A new law (linear_pbond, soft_bond,
+// damage_bond) is a new type satisfying `ContactLawKernel` plus one registry
+// entry (contact_law_registry.cpp); the loops do not change.
+#include <concepts>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "dfc/common/config_reader.hpp"
+#include "dfc/dem/vec3.hpp"
+
+namespace dfc::dem {
+
+/// State of one contact between a "first" body (always a particle) and a
+/// "second" body (a particle or a wall facet), evaluated at the current positions.
+struct ContactKinematics {
+  Vec3 normal;                     ///< unit vector from the first body's centre towards the second body
+  double overlap = 0.0;            ///< m; r1 + r2 - d (wall: r1 - d); > 0 in contact, <= 0 a gap
+  Vec3 relative_velocity;          ///< m/s, velocity of the second body's material point at the contact minus the first's
+  Vec3 relative_angular_velocity;  ///< rad/s, omega_2 - omega_1 (bonded laws: bending and twisting increments)
+  double effective_mass = 0.0;     ///< kg, m1 m2 / (m1 + m2); a wall counts as infinitely heavy (= m1)
+  double radius_first = 0.0;       ///< m
+  double radius_second = 0.0;      ///< m; 0 for a wall facet (PFC: a ball–facet contact uses the ball radius only)
+  double dt = 0.0;                 ///< s, the time step (incremental laws)
+};
+
+/// What a law returns: the force on the first body, acting at the contact
+/// point, and an optional pure couple. The second body receives the opposite.
+struct ContactForce {
+  Vec3 on_first;         ///< N
+  Vec3 couple_on_first;  ///< N m (laws with has_couple only)
+};
+
+/// Largest translational stiffnesses a law can present, for the critical time step.
+struct StiffnessBound {
+  double normal = 0.0;  ///< N/m
+  double shear = 0.0;   ///< N/m
+};
+
+/// One parameter of a law: the key in the scenario, its unit, default,
+/// one sentence, its admissible range and how it scales under particle
+/// upscaling by S (value x S^upscaling_exponent; Thakur et al. 2015: contact
+/// stiffness scales linearly with particle size, dimensionless ratios stay fixed).
+struct ParameterSpec {
+  std::string name;
+  std::string unit;
+  std::optional<double> default_value;  ///< nullopt: required
+  std::string sentence;
+  Bounds bounds;
+  double upscaling_exponent = 0.0;
+};
+
+/// One column of per-contact history (e.g. the x component of the shear force).
+struct HistoryColumn {
+  std::string name;
+  std::string unit;
+};
+
+/// The compile-time contract of a contact law kernel.
+template <class Law>
+concept ContactLawKernel = requires(const Law law, const ContactKinematics& k, double* history) {
+  { Law::history_size } -> std::convertible_to<std::size_t>;  // doubles of history per contact
+  { Law::has_couple } -> std::convertible_to<bool>;           // returns a pure couple as well as a force
+  { Law::acts_across_gap } -> std::convertible_to<bool>;      // false: a contact with overlap <= 0 carries nothing
+  { law.evaluate(k, history) } -> std::same_as<ContactForce>;
+  { law.separate(history) } -> std::same_as<void>;             // the contact opened: reset its history
+  { law.stiffness_bound() } -> std::same_as<StiffnessBound>;
+};
+
+}  // namespace dfc::dem

@@ -1,0 +1,54 @@
+#pragma once
+// DemBackend: the DEM as a protocol v1 server (SPEC.md §4–§6, DESIGN §4).
+//
+// Coupling (accepts_interface): set_interface turns the continuum's boundary
+// nodes and facets into the coupling wall "interface"; each advance takes the
+// node velocities, moves the wall with them for n steps, and returns the force
+// the particles exert ON each node, averaged over the n steps (impulse /
+// duration, the steps being equal).
+//
+// Sign conventions: forces are the force ON the named body (SPEC §6.2).
+//   force                      particles on interface nodes, N
+//   interface_force_reaction   sum of forces the interface exerted ON the particles,
+//                              summed from the particle side (= -sum(force))
+//   interface_power_w          sum over nodes of force . velocity (power into the continuum)
+//   pile_displacement_m        pile travel along its velocity direction (positive = penetration)
+//   pile_force_n               force of the particles on the pile along -velocity direction
+//                              (positive = resisting penetration), averaged over the advance
+//   wall_<name>_force_n/_moment_nm  particles on each rigid wall (moment about the origin), averaged
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dfc/dem/dem_config.hpp"
+#include "dfc/dem/model_builder.hpp"
+#include "dfc/protocol/solver_backend.hpp"
+
+namespace dfc::dem {
+
+class DemBackend final : public protocol::SolverBackend {
+ public:
+  [[nodiscard]] protocol::SolverIdentity identity() const override;
+  nlohmann::json configure(const nlohmann::json& section) override;
+  void set_interface(const protocol::InterfaceMesh& mesh) override;
+  protocol::AdvanceResult advance(const protocol::AdvanceRequest& request) override;
+  [[nodiscard]] nlohmann::json monitors() override;
+  [[nodiscard]] std::vector<protocol::Array> snapshot(std::string& kind) override;
+
+  /// The model (tests, tools). Throws ProtocolError(out_of_order) before configure.
+  [[nodiscard]] const Simulation& simulation() const;
+
+ private:
+  Simulation& sim();
+  /// Unit vector of the pile's motion (its velocity direction; -z if it does not move).
+  [[nodiscard]] Vec3 pile_direction() const;
+
+  DemConfig config_;
+  DemModel model_;
+  std::optional<std::size_t> interface_wall_;
+  Vec3 pile_reference_;                       ///< m, a pile vertex at configure
+  nlohmann::json averages_ = nlohmann::json::object();  ///< advance-averaged monitors of the last advance
+};
+
+}  // namespace dfc::dem

@@ -1,0 +1,65 @@
+#pragma once
+// The DEM section of a scenario: schema, validation and defaults.
+// The full key list with units and defaults is dem_config_help() (--help of
+// dem_server); errors are dfc::ConfigError with the key path inside the section.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dfc/dem/bed_generator.hpp"
+#include "dfc/dem/contact_law_registry.hpp"
+#include "dfc/dem/wall.hpp"
+#include "dfc/dem/wall_builders.hpp"
+
+namespace dfc::dem {
+
+struct ParticleConfig {
+  std::string generator;                ///< "lattice" or "list"
+  LatticeBedSpec lattice;               ///< generator "lattice"
+  double density = 0.0;                 ///< kg/m3
+  std::vector<GeneratedSphere> spheres; ///< generated or listed; id = index
+};
+
+struct WallConfig {
+  std::string name;
+  WallMesh mesh;
+  Vec3 velocity;  ///< m/s
+  std::int64_t start_step = 0;
+  ContactLawSetting contact;
+};
+
+struct PileConfig {
+  CylinderGeometry geometry;
+  Vec3 velocity;  ///< m/s
+  std::int64_t start_step = 0;
+  ContactLawSetting contact;
+};
+
+struct TimestepConfig {
+  double fraction_of_critical = 0.2;
+  std::optional<double> dt;  ///< s, fixed step instead of a fraction
+};
+
+struct DemConfig {
+  ParticleConfig particles;
+  ContactLawSetting contact;       ///< particle–particle
+  ContactLawSetting wall_contact;  ///< particle–wall default, and the coupling wall
+  double local_damping = 0.7;
+  TimestepConfig timestep;
+  Vec3 gravity;                    ///< m/s^2
+  double skin = 0.0;               ///< m; 0: automatic (0.2 r_max)
+  std::vector<WallConfig> walls;
+  std::optional<PileConfig> pile;
+  int threads = 0;
+};
+
+/// Validates the whole section (unknown keys are errors). Generates the bed.
+[[nodiscard]] DemConfig parse_dem_config(const nlohmann::json& section);
+
+/// The schema in words, with the contact-law registry (for --help).
+[[nodiscard]] std::string dem_config_help();
+
+}  // namespace dfc::dem

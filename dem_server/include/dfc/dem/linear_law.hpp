@@ -1,0 +1,83 @@
+#pragma once
+// `linear`: the PFC linear contact model, unbonded and frictional
+// (Itasca PFC 6/7 "Linear Model"; Cundall & Strack 1979; reference/dem-physics.md §2.3).
+//
+//   normal:  F_n = k_n * overlap (compression positive, no tension)
+//            + dashpot F_d = -2 beta_n sqrt(m_eff k_n) v_n (PFC dp_nratio, full mode)
+//   shear:   F_s <- rotate(F_s) + k_s * dU_s,  dU_s = v_t dt   (incremental)
+//            |F_s| <= mu * F_n                                   (Coulomb slip)
+//
+// History: the shear force on the first body, 3 components in global axes,
+// rotated with the contact plane every step.
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "dfc/dem/contact_model.hpp"
+
+namespace dfc::dem {
+
+/// Projects the stored shear force onto the plane normal to `normal` and
+/// restores its magnitude: the first-order rotation of the shear force with
+/// the contact plane used by PFC and LAMMPS gran/hooke/history.
+[[nodiscard]] inline Vec3 rotate_into_contact_plane(const Vec3& shear, const Vec3& normal) noexcept {
+  const double before2 = norm2(shear);
+  if (before2 == 0.0) return shear;
+  const Vec3 projected = shear - dot(shear, normal) * normal;
+  const double after2 = norm2(projected);
+  if (after2 == 0.0) return projected;
+  return std::sqrt(before2 / after2) * projected;
+}
+
+/// Caps |shear| at `limit` (>= 0) keeping its direction (Coulomb slip).
+[[nodiscard]] inline Vec3 coulomb_limit(const Vec3& shear, double limit) noexcept {
+  const double magnitude2 = norm2(shear);
+  if (magnitude2 <= limit * limit) return shear;
+  return (limit / std::sqrt(magnitude2)) * shear;
+}
+
+struct LinearLaw {
+  static constexpr std::string_view keyword = "linear";
+  static constexpr std::size_t history_size = 3;
+  static constexpr bool has_couple = false;
+  static constexpr bool acts_across_gap = false;
+
+  double kn = 0.0;                    ///< N/m
+  double ks = 0.0;                    ///< N/m
+  double friction = 0.0;              ///< -
+  double damping_ratio_normal = 0.0;  ///< - (fraction of critical)
+
+  /// Parameter table in the order `from_parameters` expects.
+  [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
+  [[nodiscard]] static std::vector<HistoryColumn> history_columns();
+  [[nodiscard]] static LinearLaw from_parameters(std::span<const double> values);
+
+  [[nodiscard]] StiffnessBound stiffness_bound() const noexcept { return {kn, ks}; }
+
+  void separate(double* history) const noexcept { history[0] = history[1] = history[2] = 0.0; }
+
+  [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
+    const Vec3& n = k.normal;
+    const double fn_spring = kn * k.overlap;  // compression positive; overlap > 0 here, so never tensile
+    const double vn = dot(k.relative_velocity, n);  // > 0 opening
+    // Dashpot c_n = 2 beta_n sqrt(m_eff k_n) (reference/dem-physics.md §2.3);
+    // like PFC's default full mode it may make the total normal force tensile while opening.
+    const double fn_dashpot = damping_ratio_normal > 0.0 ? -2.0 * damping_ratio_normal * std::sqrt(k.effective_mass * kn) * vn : 0.0;
+
+    Vec3 shear = rotate_into_contact_plane({history[0], history[1], history[2]}, n);
+    // The second body's contact point moving by v_t dt drags the first body along v_t.
+    shear += (ks * k.dt) * (k.relative_velocity - vn * n);
+    shear = coulomb_limit(shear, friction * fn_spring);
+    history[0] = shear.x;
+    history[1] = shear.y;
+    history[2] = shear.z;
+    // The normal force pushes the first body away from the second: along -n.
+    return {shear - (fn_spring + fn_dashpot) * n, {}};
+  }
+};
+
+static_assert(ContactLawKernel<LinearLaw>);
+
+}  // namespace dfc::dem

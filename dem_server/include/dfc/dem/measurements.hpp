@@ -1,0 +1,28 @@
+#pragma once
+// Whole-model measurements of the DEM (monitors of the server).
+#include <cstddef>
+
+#include "dfc/dem/simulation.hpp"
+
+namespace dfc::dem {
+
+struct Measurements {
+  std::size_t particle_count = 0;
+  std::size_t pair_contact_count = 0;  ///< particle–particle contacts carrying a force
+  std::size_t wall_contact_count = 0;  ///< particle–facet contacts carrying a force
+  double coordination_number = 0.0;    ///< (2 pair + wall contacts) / particles
+  double kinetic_energy = 0.0;         ///< J, translational + rotational, from the stored half-step velocities
+  double total_weight = 0.0;           ///< N, sum of m |g|
+  /// DEM analogue of FLAC's average unbalanced-force ratio: mean over particles
+  /// of |sum of contact forces + m g| (the undamped resultant of the last step)
+  /// divided by the mean |force| of the force-carrying contacts. Without
+  /// contacts the denominator is the mean weight (free fall reads 1); 0 when
+  /// nothing acts at all. Tends to 0 at equilibrium (PFC reports ~1e-5 as settled).
+  double unbalanced_force_ratio = 0.0;
+
+  [[nodiscard]] std::size_t contact_count() const noexcept { return pair_contact_count + wall_contact_count; }
+};
+
+[[nodiscard]] Measurements measure(const Simulation& simulation);
+
+}  // namespace dfc::dem

@@ -1,0 +1,56 @@
+#pragma once
+// Linked-cell neighbour search with a Verlet skin (Allen & Tildesley,
+// Computer Simulation of Liquids, 2nd ed. 2017, §5.3–5.4).
+//
+// Candidates are pairs closer than r_i + r_j + skin at build time; they stay
+// valid while no particle has moved more than skin/2 (the rebuild rule in
+// simulation.cpp). Both searches produce their lists in an order fixed by the
+// slots alone, whatever the thread count, so the force sums built on them are
+// reproducible bit for bit.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "dfc/dem/particle_store.hpp"
+#include "dfc/dem/wall.hpp"
+
+namespace dfc::dem {
+
+struct CellGrid {
+  Vec3 origin;             ///< m, corner of cell (0,0,0)
+  double cell_size = 0.0;  ///< m, >= 2 r_max + skin so that only adjacent cells can hold partners
+  std::array<std::int64_t, 3> dims{1, 1, 1};
+  /// Particles of cell c are slots [cell_start[c], cell_start[c+1]) once the
+  /// particles are ordered by `order` (build_cell_grid).
+  std::vector<std::uint32_t> cell_start;
+
+  [[nodiscard]] std::size_t cell_count() const noexcept { return std::size_t(dims[0] * dims[1] * dims[2]); }
+  /// Cell coordinates of x, clamped into the grid.
+  [[nodiscard]] std::array<std::int64_t, 3> cell_of(const Vec3& x) const noexcept;
+  [[nodiscard]] std::size_t linear_index(std::int64_t ix, std::int64_t iy, std::int64_t iz) const noexcept {
+    return std::size_t((iz * dims[1] + iy) * dims[0] + ix);
+  }
+};
+
+/// Grid over the bounding box of `positions` with cells of at least
+/// `min_cell_size` (grown if needed to keep the cell count below ~4 per
+/// particle, so a particle flying away cannot exhaust memory). `order`
+/// receives the slots sorted by cell, stable: new slot k = old slot order[k].
+[[nodiscard]] CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, std::vector<std::uint32_t>& order);
+
+/// Candidate pairs (i < j by slot) with |x_i - x_j| < r_i + r_j + skin.
+/// The particles must be in grid order. Output order: by i, then by the
+/// cell stencil and slot of j.
+void find_pair_candidates(const CellGrid& grid, const ParticleStore& particles, double skin, int threads, std::vector<std::uint32_t>& first,
+                          std::vector<std::uint32_t>& second);
+
+/// Candidate (particle slot, facet) pairs of `wall` with distance(centre,
+/// facet) < r + skin, sorted by particle then facet. `r_max` bounds the radii.
+[[nodiscard]] std::vector<std::pair<std::uint32_t, std::uint32_t>> find_facet_candidates(const CellGrid& grid, const ParticleStore& particles,
+                                                                                         const Wall& wall, double skin, double r_max,
+                                                                                         int threads);
+
+}  // namespace dfc::dem

@@ -1,0 +1,38 @@
+#pragma once
+// ParticleStore: the spheres as a structure of arrays (DESIGN §5).
+//
+// One std::vector per field, indexed by *slot*. Slots are an implementation
+// detail: the neighbour search re-sorts them spatially at every rebuild for
+// cache locality. The stable name of a particle is its `id`, which outputs,
+// contact history and restarts use.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "dfc/dem/vec3.hpp"
+
+namespace dfc::dem {
+
+struct ParticleStore {
+  std::vector<std::int64_t> id;
+  std::vector<Vec3> position;          ///< m
+  std::vector<Vec3> velocity;          ///< m/s (leapfrog: at the half step, see integrator.hpp)
+  std::vector<Vec3> angular_velocity;  ///< rad/s (half step)
+  std::vector<Vec3> force;             ///< N, resultant of the last force evaluation (contacts + gravity, undamped)
+  std::vector<Vec3> moment;            ///< N m, resultant moment of the last force evaluation
+  std::vector<double> radius;          ///< m
+  std::vector<double> mass;            ///< kg
+  std::vector<double> inertia;         ///< kg m^2, 2/5 m r^2 for a solid sphere
+
+  [[nodiscard]] std::size_t size() const noexcept { return id.size(); }
+
+  /// Appends a solid sphere at rest. Throws UserError for a non-positive
+  /// radius or density.
+  void add_sphere(std::int64_t particle_id, Vec3 x, double r, double density);
+
+  /// Reorders every field: new slot k takes old slot new_to_old[k].
+  void permute(std::span<const std::uint32_t> new_to_old);
+};
+
+}  // namespace dfc::dem

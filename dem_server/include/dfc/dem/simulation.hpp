@@ -1,0 +1,103 @@
+#pragma once
+// Simulation: particles, walls, contact lists and the time step loop of the DEM.
+//
+// One step (PFC cycle, Itasca PFC "Calculation Cycle"):
+//   1. rebuild the candidate lists if the Verlet skin is used up;
+//   2. contact forces: every particle pair and particle–facet candidate,
+//      in parallel into per-contact storage, the law chosen once per step;
+//   3. law of motion: per particle, gather the contact forces in fixed order,
+//      add gravity, apply local damping, advance velocities and positions;
+//   4. walls: distribute the contact forces to facet vertices, then move the
+//      vertices with their velocities.
+// The same input and thread count give the same result bit for bit, and so
+// does any other thread count (no sum depends on how work is split).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <unordered_set>
+#include <vector>
+
+#include "dfc/dem/contact_law_registry.hpp"
+#include "dfc/dem/contact_lists.hpp"
+#include "dfc/dem/particle_store.hpp"
+#include "dfc/dem/wall.hpp"
+
+namespace dfc::dem {
+
+struct SimulationSettings {
+  ContactLawSetting particle_law;  ///< particle–particle contacts
+  Vec3 gravity;                    ///< m/s^2 (already N g in a centrifuge)
+  double local_damping = 0.7;      ///< alpha of local damping, [0, 1)
+  double skin = 0.0;               ///< m, Verlet skin; <= 0: 0.2 x the largest radius
+  int threads = 0;                 ///< OpenMP threads; <= 0: the OpenMP default
+};
+
+class Simulation {
+ public:
+  explicit Simulation(SimulationSettings settings);
+
+  // Set-up --------------------------------------------------------------------
+  /// Adds a solid sphere at rest. Ids must be unique (UserError otherwise).
+  void add_sphere(std::int64_t id, Vec3 centre, double radius, double density);
+  /// Direct access to the particle arrays (e.g. to set velocities); the
+  /// neighbour lists are rebuilt before the next step.
+  [[nodiscard]] ParticleStore& particles_for_edit();
+  /// Returns the wall's index.
+  std::size_t add_wall(Wall wall);
+  /// Replaces a wall (e.g. a new interface mesh); its contact history is dropped.
+  void replace_wall(std::size_t index, Wall wall);
+  /// Velocities of a coupling wall's vertices for the following steps.
+  void set_vertex_velocities(std::size_t wall, std::span<const Vec3> velocity);
+
+  // Running -------------------------------------------------------------------
+  /// s, see timestep.hpp.
+  [[nodiscard]] double critical_timestep() const;
+  /// One step of dt, without checking dt against the critical step.
+  void step(double dt);
+  /// `steps` steps of dt; refuses dt > critical_timestep() with SolverError.
+  void run(std::int64_t steps, double dt);
+  /// Forces a neighbour-list rebuild before the next step.
+  void request_rebuild() noexcept { stale_ = true; }
+
+  // State ---------------------------------------------------------------------
+  [[nodiscard]] const ParticleStore& particles() const noexcept { return particles_; }
+  [[nodiscard]] const std::vector<Wall>& walls() const noexcept { return walls_; }
+  [[nodiscard]] const PairContacts& pair_contacts() const noexcept { return pairs_; }
+  [[nodiscard]] const WallContacts& wall_contacts(std::size_t wall) const { return wall_contacts_.at(wall); }
+  [[nodiscard]] const ContactOutputs& contact_outputs() const noexcept { return outputs_; }
+  /// Where wall `wall`'s contacts start in contact_outputs().
+  [[nodiscard]] std::size_t wall_output_offset(std::size_t wall) const { return wall_offsets_.at(wall); }
+  [[nodiscard]] std::int64_t step_count() const noexcept { return step_; }
+  [[nodiscard]] std::size_t rebuild_count() const noexcept { return rebuilds_; }
+  [[nodiscard]] double skin() const noexcept { return skin_; }
+  [[nodiscard]] int threads() const noexcept { return threads_; }
+  [[nodiscard]] const SimulationSettings& settings() const noexcept { return settings_; }
+
+ private:
+  void rebuild();
+  /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
+  bool compute_contact_forces(double dt);
+  void move_walls(double dt);
+
+  SimulationSettings settings_;
+  int threads_ = 1;
+  double skin_ = 0.0;
+  ParticleStore particles_;
+  std::unordered_set<std::int64_t> ids_;
+  std::vector<Wall> walls_;
+
+  PairContacts pairs_;
+  std::vector<WallContacts> wall_contacts_;
+  std::vector<std::size_t> wall_offsets_;
+  ContactOutputs outputs_;
+  Incidence incidence_;
+  std::vector<Vec3> reference_positions_;                 ///< particle positions at the last rebuild
+  std::vector<std::vector<Vec3>> reference_vertices_;     ///< wall vertices at the last rebuild
+  double max_wall_displacement_ = 0.0;                    ///< m, since the last rebuild
+
+  std::int64_t step_ = 0;
+  std::size_t rebuilds_ = 0;
+  bool stale_ = true;
+};
+
+}  // namespace dfc::dem

@@ -1,0 +1,19 @@
+#pragma once
+// From contact forces to wall loads: each contact's force on the wall goes to
+// the facet's three vertices in proportion to the barycentric weights of the
+// contact point (the PFC–FLAC3D wall–zone coupling, DESIGN §4). The weights
+// sum to one, so the vertex forces sum to the contact force, and since
+// sum_k w_k x_k = contact point they also carry its moment about any point.
+#include <cstddef>
+
+#include "dfc/dem/contact_lists.hpp"
+#include "dfc/dem/wall.hpp"
+
+namespace dfc::dem {
+
+/// Recomputes wall.vertex_force, force, moment and force_on_particles from the
+/// contacts' outputs at [offset, offset + contacts.size()). Serial, in
+/// contact order: reproducible.
+void distribute_wall_forces(Wall& wall, const WallContacts& contacts, const ContactOutputs& out, std::size_t offset);
+
+}  // namespace dfc::dem

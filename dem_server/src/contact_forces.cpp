@@ -1,0 +1,26 @@
+// Step 2 of the cycle: the only place the contact kernels are instantiated.
+// std::visit picks the law once per step and list; the loops inside are
+// compiled per law, with the law's evaluate inlined.
+#include <span>
+#include <variant>
+
+#include "dfc/dem/contact_kernels.hpp"
+#include "dfc/dem/simulation.hpp"
+#include "dfc/dem/wall_contacts.hpp"
+
+namespace dfc::dem {
+
+bool Simulation::compute_contact_forces(double dt) {
+  bool excessive = std::visit([&](const auto& law) { return evaluate_pair_contacts(law, particles_, pairs_, outputs_, dt, threads_); },
+                              settings_.particle_law.law);
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const std::size_t offset = wall_offsets_[w];
+    select_wall_contacts(walls_[w], particles_, wall_contacts_[w], std::span(outputs_.point).subspan(offset, wall_contacts_[w].size()), threads_);
+    excessive = std::visit([&](const auto& law) {
+      return evaluate_wall_contacts(law, particles_, walls_[w], wall_contacts_[w], outputs_, offset, dt, threads_);
+    }, walls_[w].law.law) || excessive;
+  }
+  return excessive;
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,108 @@
+#include "dfc/dem/contact_law_registry.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "dfc/common/errors.hpp"
+
+namespace dfc::dem {
+
+namespace {
+
+template <class Law>
+ContactLaw make_law(std::span<const double> values) {
+  return ContactLaw{Law::from_parameters(values)};
+}
+
+std::vector<ContactLawInfo> build_registry() {
+  std::vector<ContactLawInfo> table;
+  table.push_back({
+      .keyword = std::string(LinearLaw::keyword),
+      .summary = "PFC linear model: no-tension normal spring, incremental shear spring with Coulomb slip, optional normal dashpot",
+      .reference = "Itasca PFC linear model; Cundall & Strack (1979); reference/dem-physics.md §2.3",
+      .upscaling_rule = "k_n and k_s scale with S (stiffness ~ E* R, Thakur et al. 2015); friction and damping ratio stay fixed",
+      .parameters = LinearLaw::parameter_specs(),
+      .history = LinearLaw::history_columns(),
+      .make = &make_law<LinearLaw>,
+  });
+  // Bonded laws (linear_pbond, soft_bond, damage_bond) go here.
+  return table;
+}
+
+std::string registry_keywords() {
+  std::string list;
+  for (const auto& info : contact_law_registry()) list += (list.empty() ? "\"" : ", \"") + info.keyword + "\" (" + info.summary + ")";
+  return list;
+}
+
+}  // namespace
+
+const std::vector<ContactLawInfo>& contact_law_registry() {
+  static const std::vector<ContactLawInfo> table = build_registry();
+  return table;
+}
+
+const ContactLawInfo* find_contact_law(std::string_view keyword) noexcept {
+  for (const auto& info : contact_law_registry())
+    if (info.keyword == keyword) return &info;
+  return nullptr;
+}
+
+std::size_t ContactLawSetting::history_size() const {
+  return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::history_size; }, law);
+}
+
+bool ContactLawSetting::has_couple() const {
+  return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::has_couple; }, law);
+}
+
+StiffnessBound ContactLawSetting::stiffness_bound() const {
+  return std::visit([](const auto& l) { return l.stiffness_bound(); }, law);
+}
+
+ContactLawSetting read_contact_law(ConfigReader cfg) {
+  const std::string keyword = cfg.string("law", std::string(LinearLaw::keyword));
+  const ContactLawInfo* info = find_contact_law(keyword);
+  if (info == nullptr) cfg.fail("law", "unknown contact law \"" + keyword + "\"; the registry has " + registry_keywords());
+  ContactLawSetting setting;
+  setting.info = info;
+  for (const auto& spec : info->parameters)
+    setting.values.push_back(spec.default_value ? cfg.number(spec.name, *spec.default_value, spec.bounds) : cfg.number(spec.name, spec.bounds));
+  cfg.finish();
+  setting.law = info->make(setting.values);
+  return setting;
+}
+
+ContactLawSetting make_contact_law(const nlohmann::json& object, const std::string& path) {
+  return read_contact_law(ConfigReader(object, path));
+}
+
+ContactLawSetting upscale(const ContactLawSetting& setting, double scale_factor) {
+  if (!(scale_factor > 0.0)) throw UserError("the particle upscaling factor S must be positive");
+  ContactLawSetting out = setting;
+  for (std::size_t k = 0; k < out.values.size(); ++k)
+    out.values[k] *= std::pow(scale_factor, setting.info->parameters[k].upscaling_exponent);
+  out.law = setting.info->make(out.values);
+  return out;
+}
+
+std::string describe_contact_laws() {
+  std::ostringstream out;
+  for (const auto& info : contact_law_registry()) {
+    out << "  law \"" << info.keyword << "\": " << info.summary << "\n"
+        << "    source: " << info.reference << "\n"
+        << "    upscaling by S: " << info.upscaling_rule << "\n";
+    for (const auto& p : info.parameters) {
+      out << "    " << p.name << " [" << p.unit << "] ";
+      if (p.default_value) out << "(default " << *p.default_value << ")";
+      else out << "(required)";
+      out << ": " << p.sentence << "\n";
+    }
+    out << "    per-contact history:";
+    for (const auto& h : info.history) out << " " << h.name << " [" << h.unit << "]";
+    out << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace dfc::dem

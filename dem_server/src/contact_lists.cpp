@@ -1,0 +1,116 @@
+#include "dfc/dem/contact_lists.hpp"
+#include "dfc/dem/parallel.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace dfc::dem {
+
+void WallContacts::assign(std::span<const std::pair<std::uint32_t, std::uint32_t>> candidates, std::size_t history_stride) {
+  const std::size_t n = candidates.size();
+  particle.resize(n);
+  facet.resize(n);
+  group_start.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    particle[k] = candidates[k].first;
+    facet[k] = candidates[k].second;
+    if (k == 0 || particle[k] != particle[k - 1]) group_start.push_back(std::uint32_t(k));
+  }
+  group_start.push_back(std::uint32_t(n));
+  stride = history_stride;
+  history.assign(n * stride, 0.0);
+  weights.assign(n, {});
+  distance.assign(n, 0.0);
+  feature.assign(n, 0);
+  selected.assign(n, 0);
+}
+
+void ContactOutputs::resize(std::size_t n, bool with_couple) {
+  force.assign(n, Vec3{});
+  point.assign(n, Vec3{});
+  couple.assign(with_couple ? n : 0, Vec3{});
+}
+
+Incidence build_incidence(std::size_t particle_count, const PairContacts& pairs, std::span<const WallContacts* const> walls,
+                          std::span<const std::size_t> wall_offsets) {
+  Incidence inc;
+  inc.start.assign(particle_count + 1, 0);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    ++inc.start[pairs.first[k] + 1];
+    ++inc.start[pairs.second[k] + 1];
+  }
+  for (const WallContacts* w : walls)
+    for (const auto p : w->particle) ++inc.start[p + 1];
+  for (std::size_t i = 0; i < particle_count; ++i) inc.start[i + 1] += inc.start[i];
+  inc.entry.resize(inc.start.back());
+  std::vector<std::uint32_t> fill(inc.start.begin(), inc.start.end() - 1);
+  // Filled in increasing contact index: each particle's list is in a fixed order.
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    inc.entry[fill[pairs.first[k]]++] = std::uint32_t(k << 1);
+    inc.entry[fill[pairs.second[k]]++] = std::uint32_t(k << 1 | 1u);
+  }
+  for (std::size_t w = 0; w < walls.size(); ++w)
+    for (std::size_t k = 0; k < walls[w]->size(); ++k)
+      inc.entry[fill[walls[w]->particle[k]]++] = std::uint32_t((wall_offsets[w] + k) << 1);
+  return inc;
+}
+
+void HistoryArchive::add(Key key, const double* row) {
+  if (std::all_of(row, row + stride_, [](double v) { return v == 0.0; })) return;
+  keys_.push_back(key);
+  rows_.insert(rows_.end(), row, row + stride_);
+}
+
+void HistoryArchive::seal() {
+  sorted_.resize(keys_.size());
+  std::iota(sorted_.begin(), sorted_.end(), 0u);
+  std::sort(sorted_.begin(), sorted_.end(), [&](std::uint32_t a, std::uint32_t b) { return keys_[a] < keys_[b]; });
+}
+
+const double* HistoryArchive::find(Key key) const {
+  const auto it = std::lower_bound(sorted_.begin(), sorted_.end(), key, [&](std::uint32_t a, const Key& k) { return keys_[a] < k; });
+  if (it == sorted_.end() || keys_[*it] != key) return nullptr;
+  return rows_.data() + std::size_t(*it) * stride_;
+}
+
+HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles) {
+  HistoryArchive archive(pairs.stride);
+  if (pairs.stride == 0) return archive;
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    archive.add({particles.id[pairs.first[k]], particles.id[pairs.second[k]]}, pairs.history.data() + k * pairs.stride);
+  archive.seal();
+  return archive;
+}
+
+HistoryArchive archive_history(const WallContacts& contacts, const ParticleStore& particles) {
+  HistoryArchive archive(contacts.stride);
+  if (contacts.stride == 0) return archive;
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    archive.add({particles.id[contacts.particle[k]], std::int64_t(contacts.facet[k])}, contacts.history.data() + k * contacts.stride);
+  archive.seal();
+  return archive;
+}
+
+void restore_history(PairContacts& pairs, const ParticleStore& particles, const HistoryArchive& archive, int threads) {
+  if (pairs.stride == 0 || archive.size() == 0) return;
+  const auto n = static_cast<std::int64_t>(pairs.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto c = std::size_t(k);
+    if (const double* row = archive.find({particles.id[pairs.first[c]], particles.id[pairs.second[c]]}))
+      std::copy(row, row + pairs.stride, pairs.row(c));
+  }
+}
+
+void restore_history(WallContacts& contacts, const ParticleStore& particles, const HistoryArchive& archive, int threads) {
+  if (contacts.stride == 0 || archive.size() == 0) return;
+  const auto n = static_cast<std::int64_t>(contacts.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const auto c = std::size_t(k);
+    if (const double* row = archive.find({particles.id[contacts.particle[c]], std::int64_t(contacts.facet[c])}))
+      std::copy(row, row + contacts.stride, contacts.row(c));
+  }
+}
+
+}  // namespace dfc::dem

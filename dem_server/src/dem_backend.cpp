@@ -1,0 +1,206 @@
+#include "dfc/dem/dem_backend.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/common/version.hpp"
+#include "dfc/dem/measurements.hpp"
+
+namespace dfc::dem {
+
+namespace {
+
+nlohmann::json to_json(const Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+std::vector<double> flatten(std::span<const Vec3> v) {
+  std::vector<double> out;
+  out.reserve(3 * v.size());
+  for (const auto& x : v) out.insert(out.end(), {x.x, x.y, x.z});
+  return out;
+}
+
+}  // namespace
+
+protocol::SolverIdentity DemBackend::identity() const {
+  return {"dem_server", std::string(project_version()), "dem", {protocol::capability::accepts_interface, protocol::capability::snapshot}};
+}
+
+nlohmann::json DemBackend::configure(const nlohmann::json& section) {
+  DemConfig config = parse_dem_config(section);
+  DemModel model = build_model(config);
+  config_ = std::move(config);
+  model_ = std::move(model);
+  interface_wall_.reset();
+  averages_ = nlohmann::json::object();
+  if (model_.pile_wall) pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
+  return {{"dt_suggested", model_.dt},
+          {"dt_max", model_.dt_critical},
+          {"particles", sim().particles().size()},
+          {"particles_removed_by_walls", model_.removed_particles},
+          {"contact_law", config_.contact.info->keyword}};
+}
+
+Simulation& DemBackend::sim() {
+  if (!model_.simulation) throw protocol::ProtocolError(protocol::ErrorCode::out_of_order, "the DEM is not configured yet; send configure first");
+  return *model_.simulation;
+}
+
+const Simulation& DemBackend::simulation() const {
+  if (!model_.simulation) throw protocol::ProtocolError(protocol::ErrorCode::out_of_order, "the DEM is not configured yet; send configure first");
+  return *model_.simulation;
+}
+
+void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
+  using protocol::ErrorCode;
+  using protocol::ProtocolError;
+  Simulation& s = sim();
+  const std::int64_t n = mesh.node_count();
+  if (std::int64_t(mesh.coordinates.size()) != 3 * n)
+    throw ProtocolError(ErrorCode::bad_array, "interface coordinates must be f64 [" + std::to_string(n) + ",3], one row per node id");
+  if (mesh.facets.size() % 3 != 0 || mesh.facets.empty())
+    throw ProtocolError(ErrorCode::bad_array, "interface facets must be a non-empty i64 [m,3] array of node rows");
+  WallMesh wall_mesh;
+  for (std::int64_t v = 0; v < n; ++v)
+    wall_mesh.vertices.push_back({mesh.coordinates[std::size_t(3 * v)], mesh.coordinates[std::size_t(3 * v + 1)], mesh.coordinates[std::size_t(3 * v + 2)]});
+  for (std::size_t f = 0; f < mesh.facets.size(); f += 3) {
+    Facet facet{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::int64_t row = mesh.facets[f + k];
+      if (row < 0 || row >= n)
+        throw ProtocolError(ErrorCode::bad_array, "interface facet " + std::to_string(f / 3) + " refers to node row " + std::to_string(row) +
+                                                      " but there are " + std::to_string(n) + " nodes");
+      facet[k] = std::uint32_t(row);
+    }
+    wall_mesh.facets.push_back(facet);
+  }
+  Wall wall;
+  try {
+    wall = make_wall("interface", std::move(wall_mesh), WallMotion::coupling, config_.wall_contact);
+  } catch (const UserError& e) {
+    throw ProtocolError(ErrorCode::bad_array, e.what());
+  }
+  if (interface_wall_) s.replace_wall(*interface_wall_, std::move(wall));
+  else interface_wall_ = s.add_wall(std::move(wall));
+}
+
+Vec3 DemBackend::pile_direction() const {
+  const Vec3 v = config_.pile ? config_.pile->velocity : Vec3{};
+  const double speed = norm(v);
+  return speed > 0.0 ? (1.0 / speed) * v : Vec3{0.0, 0.0, -1.0};
+}
+
+protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& request) {
+  using protocol::ErrorCode;
+  using protocol::ProtocolError;
+  Simulation& s = sim();
+
+  // 1. Interface velocities (required exactly when an interface exists).
+  std::vector<Vec3> node_velocity;
+  if (interface_wall_) {
+    const auto n = std::int64_t(s.walls()[*interface_wall_].vertex_count());
+    const std::vector<double> v = protocol::require_f64(request.inputs, protocol::field::velocity, n, 3);
+    for (std::size_t k = 0; k < v.size(); k += 3) {
+      node_velocity.push_back({v[k], v[k + 1], v[k + 2]});
+      if (!is_finite(node_velocity.back())) throw ProtocolError(ErrorCode::bad_array, "array 'velocity' holds a non-finite value in row " + std::to_string(k / 3));
+    }
+    s.set_vertex_velocities(*interface_wall_, node_velocity);
+  } else if (protocol::find_array(request.inputs, protocol::field::velocity) != nullptr) {
+    throw ProtocolError(ErrorCode::bad_array, "advance carries 'velocity' but no interface was set; send set_interface first or omit the array");
+  }
+
+  // 2. Refuse an unstable step (SPEC §5.2: say the largest stable one).
+  const double limit = s.critical_timestep();
+  if (request.dt > limit) {
+    std::ostringstream msg;
+    msg << "dt = " << request.dt << " s exceeds the critical time step of the DEM; the largest stable step is " << limit << " s";
+    throw SolverError(msg.str());
+  }
+
+  // 3. Run, accumulating impulses of the interface, the pile and every wall.
+  const auto& walls = s.walls();
+  std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
+  std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
+  Vec3 reaction_sum;
+  for (std::int64_t step = 0; step < request.n_steps; ++step) {
+    s.step(request.dt);
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      wall_force_sum[w] += walls[w].force;
+      wall_moment_sum[w] += walls[w].moment;
+    }
+    if (interface_wall_) {
+      const Wall& wall = walls[*interface_wall_];
+      for (std::size_t v = 0; v < node_force_sum.size(); ++v) node_force_sum[v] += wall.vertex_force[v];
+      reaction_sum += wall.force_on_particles;
+    }
+  }
+  const double inv_n = 1.0 / double(request.n_steps);
+
+  // 4. Averages (impulse / duration) and outputs.
+  protocol::AdvanceResult result;
+  averages_ = nlohmann::json::object();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    if (interface_wall_ && w == *interface_wall_) continue;
+    averages_["wall_" + walls[w].name + "_force_n"] = to_json(inv_n * wall_force_sum[w]);
+    averages_["wall_" + walls[w].name + "_moment_nm"] = to_json(inv_n * wall_moment_sum[w]);
+  }
+  if (model_.pile_wall) averages_["pile_force_n"] = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
+  if (interface_wall_) {
+    double power = 0.0;
+    for (std::size_t v = 0; v < node_force_sum.size(); ++v) {
+      node_force_sum[v] *= inv_n;
+      power += dot(node_force_sum[v], node_velocity[v]);
+    }
+    averages_["interface_force_reaction"] = to_json(inv_n * reaction_sum);
+    averages_["interface_power_w"] = power;
+    const auto rows = std::int64_t(node_force_sum.size());
+    result.outputs.push_back(protocol::Array::from_f64(protocol::field::force, {rows, 3}, flatten(node_force_sum)));
+  }
+  result.monitors = monitors();
+  return result;
+}
+
+nlohmann::json DemBackend::monitors() {
+  const Simulation& s = sim();
+  const Measurements m = measure(s);
+  nlohmann::json out = averages_;
+  out["unbalanced_force_ratio"] = m.unbalanced_force_ratio;
+  out["kinetic_energy_j"] = m.kinetic_energy;
+  out["particle_count"] = m.particle_count;
+  out["contact_count"] = m.contact_count();
+  out["coordination_number"] = m.coordination_number;
+  out["total_weight_n"] = m.total_weight;
+  out["dt_critical_s"] = s.critical_timestep();
+  if (model_.pile_wall) {
+    out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());
+    if (!out.contains("pile_force_n")) out["pile_force_n"] = 0.0;
+  }
+  return out;
+}
+
+std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
+  const Simulation& s = sim();
+  const ParticleStore& p = s.particles();
+  kind = "particles";
+  const auto n = std::int64_t(p.size());
+  std::vector<protocol::Array> arrays;
+  arrays.push_back(protocol::Array::from_f64("particle_position", {n, 3}, flatten(p.position)));
+  arrays.push_back(protocol::Array::from_f64("particle_radius", {n}, p.radius));
+  arrays.push_back(protocol::Array::from_f64("particle_velocity", {n, 3}, flatten(p.velocity)));
+  arrays.push_back(protocol::Array::from_i64("particle_id", {n}, p.id));
+  if (!s.walls().empty()) {
+    std::vector<Vec3> vertices;
+    std::vector<std::int64_t> facets;
+    for (const auto& wall : s.walls()) {
+      const auto offset = std::int64_t(vertices.size());
+      vertices.insert(vertices.end(), wall.vertices.begin(), wall.vertices.end());
+      for (const auto& f : wall.facets)
+        for (const auto v : f) facets.push_back(offset + std::int64_t(v));
+    }
+    arrays.push_back(protocol::Array::from_f64("wall_vertices", {std::int64_t(vertices.size()), 3}, flatten(vertices)));
+    arrays.push_back(protocol::Array::from_i64("wall_facets", {std::int64_t(facets.size() / 3), 3}, facets));
+  }
+  return arrays;
+}
+
+}  // namespace dfc::dem

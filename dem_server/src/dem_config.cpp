@@ -1,0 +1,250 @@
+#include "dfc/dem/dem_config.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "dfc/common/config_reader.hpp"
+#include "dfc/common/errors.hpp"
+
+namespace dfc::dem {
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+Vec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+std::array<double, 2> read_xy(ConfigReader& cfg, std::string_view key) {
+  if (!cfg.has(key)) {
+    cfg.accept(key);
+    return {0.0, 0.0};
+  }
+  const auto v = cfg.numbers(key);
+  if (v.size() != 2) cfg.fail(key, "expected an array of 2 numbers [x, y]");
+  return {v[0], v[1]};
+}
+
+BedRegion read_region(ConfigReader cfg) {
+  BedRegion region;
+  const std::string type = cfg.choice("type", {"box", "cylinder"});
+  if (type == "box") {
+    region.shape = BedRegion::Shape::box;
+    region.min = to_vec3(cfg.vec3("min_m"));
+    region.max = to_vec3(cfg.vec3("max_m"));
+    if (!(region.max.x > region.min.x && region.max.y > region.min.y && region.max.z > region.min.z))
+      cfg.fail("max_m", "every component must exceed the one of min_m");
+  } else {
+    region.shape = BedRegion::Shape::cylinder;
+    const auto axis = read_xy(cfg, "axis_xy_m");
+    region.axis_x = axis[0];
+    region.axis_y = axis[1];
+    region.radius = cfg.positive("radius_m");
+    region.z_min = cfg.number("z_min_m");
+    region.z_max = cfg.number("z_max_m");
+    if (!(region.z_max > region.z_min)) cfg.fail("z_max_m", "must exceed z_min_m");
+  }
+  cfg.finish();
+  return region;
+}
+
+ParticleConfig read_particles(ConfigReader cfg) {
+  ParticleConfig p;
+  p.generator = cfg.choice("generator", {"lattice", "list"});
+  p.density = cfg.positive("density_kg_m3");
+  if (p.generator == "lattice") {
+    p.lattice.radius_min = cfg.positive("radius_min_m");
+    p.lattice.radius_max = cfg.positive("radius_max_m");
+    if (p.lattice.radius_max < p.lattice.radius_min) cfg.fail("radius_max_m", "must be at least radius_min_m");
+    p.lattice.spacing_factor = cfg.number("spacing_factor", 1.05, Bounds{1.0, 10.0});
+    p.lattice.seed = std::uint64_t(cfg.integer("seed", 1, 0));
+    p.lattice.region = read_region(cfg.child("region"));
+    p.spheres = generate_lattice_bed(p.lattice);
+    if (p.spheres.empty()) cfg.fail("region", "no sphere fits: the region must be at least 2 radius_max_m x spacing_factor wide in every direction");
+  } else {
+    const nlohmann::json& list = cfg.raw("spheres");
+    if (!list.is_array() || list.empty()) cfg.fail("spheres", "expected a non-empty array of [x, y, z, radius] in m");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::string key = "spheres[" + std::to_string(k) + "]";
+      const auto& s = list[k];
+      if (!s.is_array() || s.size() != 4 || !std::all_of(s.begin(), s.end(), [](const auto& v) { return v.is_number(); }))
+        cfg.fail(key, "expected [x, y, z, radius] in m");
+      const GeneratedSphere sphere{{s[0].get<double>(), s[1].get<double>(), s[2].get<double>()}, s[3].get<double>()};
+      if (!is_finite(sphere.centre) || !(sphere.radius > 0.0) || !std::isfinite(sphere.radius))
+        cfg.fail(key, "expected finite coordinates and a positive radius");
+      p.spheres.push_back(sphere);
+    }
+  }
+  cfg.finish();
+  return p;
+}
+
+/// Bounding box of the spheres, for default wall sizes.
+std::pair<Vec3, Vec3> bounding_box(const std::vector<GeneratedSphere>& spheres) {
+  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  for (const auto& s : spheres) {
+    const Vec3 r{s.radius, s.radius, s.radius};
+    const Vec3 a = s.centre - r, b = s.centre + r;
+    lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
+    hi = {std::max(hi.x, b.x), std::max(hi.y, b.y), std::max(hi.z, b.z)};
+  }
+  return {lo, hi};
+}
+
+ContactLawSetting read_optional_contact(ConfigReader& cfg, const ContactLawSetting& fallback) {
+  auto child = cfg.optional_child("contact");
+  return child ? read_contact_law(std::move(*child)) : fallback;
+}
+
+std::string read_wall_name(ConfigReader& cfg, std::size_t index, std::set<std::string>& used) {
+  std::string name = cfg.string("name", "wall" + std::to_string(index));
+  const bool valid = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (!valid) cfg.fail("name", "use letters, digits and '_' only (it becomes part of monitor names)");
+  if (name == "pile" || name == "interface") cfg.fail("name", "\"" + name + "\" is reserved for the pile and the coupling wall");
+  if (!used.insert(name).second) cfg.fail("name", "another wall is already called \"" + name + "\"");
+  return name;
+}
+
+WallMesh read_facet_mesh(ConfigReader& cfg) {
+  WallMesh mesh;
+  const nlohmann::json& vertices = cfg.raw("vertices_m");
+  if (!vertices.is_array() || vertices.size() < 3) cfg.fail("vertices_m", "expected an array of at least 3 [x, y, z] in m");
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const auto& v = vertices[k];
+    if (!v.is_array() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](const auto& e) { return e.is_number(); }))
+      cfg.fail("vertices_m[" + std::to_string(k) + "]", "expected [x, y, z] in m");
+    mesh.vertices.push_back({v[0].get<double>(), v[1].get<double>(), v[2].get<double>()});
+  }
+  const nlohmann::json& facets = cfg.raw("facets");
+  if (!facets.is_array() || facets.empty()) cfg.fail("facets", "expected an array of [i, j, k] vertex indices");
+  for (std::size_t k = 0; k < facets.size(); ++k) {
+    const auto& f = facets[k];
+    const bool ok = f.is_array() && f.size() == 3 && std::all_of(f.begin(), f.end(), [&](const auto& e) {
+      return e.is_number_integer() && e.template get<std::int64_t>() >= 0 && e.template get<std::int64_t>() < std::int64_t(vertices.size());
+    });
+    if (!ok) cfg.fail("facets[" + std::to_string(k) + "]", "expected [i, j, k] with indices into vertices_m (0.." + std::to_string(vertices.size() - 1) + ")");
+    mesh.facets.push_back({f[0].get<std::uint32_t>(), f[1].get<std::uint32_t>(), f[2].get<std::uint32_t>()});
+  }
+  try {
+    validate_mesh(mesh, cfg.path());
+  } catch (const UserError& e) {
+    cfg.fail("facets", e.what());
+  }
+  return mesh;
+}
+
+WallConfig read_wall(ConfigReader cfg, std::size_t index, std::set<std::string>& used, const ContactLawSetting& wall_contact,
+                     const std::pair<Vec3, Vec3>& particle_box) {
+  WallConfig wall;
+  const std::string type = cfg.choice("type", {"plane", "facets"});
+  wall.name = read_wall_name(cfg, index, used);
+  if (type == "plane") {
+    const Vec3 point = to_vec3(cfg.vec3("point_m"));
+    const Vec3 normal = to_vec3(cfg.vec3("normal"));
+    if (!(norm(normal) > 0.0)) cfg.fail("normal", "must not be the zero vector");
+    // Default size: covers the particles' bounding box seen from the point, generously.
+    const Vec3 centre = 0.5 * (particle_box.first + particle_box.second);
+    const double fallback = norm(centre - point) + norm(particle_box.second - particle_box.first);
+    wall.mesh = make_plane_mesh(point, normal, cfg.positive("half_size_m", fallback));
+  } else {
+    wall.mesh = read_facet_mesh(cfg);
+  }
+  wall.velocity = to_vec3(cfg.vec3("velocity_m_s", {0.0, 0.0, 0.0}));
+  wall.start_step = cfg.integer("start_step", 0, 0);
+  wall.contact = read_optional_contact(cfg, wall_contact);
+  cfg.finish();
+  return wall;
+}
+
+PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact) {
+  PileConfig pile;
+  const auto axis = read_xy(cfg, "axis_xy_m");
+  pile.geometry.axis_x = axis[0];
+  pile.geometry.axis_y = axis[1];
+  pile.geometry.radius = cfg.positive("radius_m");
+  pile.geometry.tip_z = cfg.number("tip_z_m");
+  pile.geometry.length = cfg.positive("length_m");
+  pile.geometry.sides = int(cfg.integer("sides", 24, 3));
+  pile.velocity = to_vec3(cfg.vec3("velocity_m_s", {0.0, 0.0, 0.0}));
+  pile.start_step = cfg.integer("start_step", 0, 0);
+  pile.contact = read_optional_contact(cfg, wall_contact);
+  cfg.finish();
+  return pile;
+}
+
+TimestepConfig read_timestep(ConfigReader& root) {
+  TimestepConfig t;
+  auto cfg = root.optional_child("timestep");
+  if (!cfg) return t;
+  if (cfg->has("dt_s") && cfg->has("fraction_of_critical")) cfg->fail("dt_s", "give either dt_s or fraction_of_critical, not both");
+  if (cfg->has("dt_s")) t.dt = cfg->positive("dt_s");
+  t.fraction_of_critical = cfg->number("fraction_of_critical", 0.2, Bounds{0.0, 1.0, true});
+  cfg->finish();
+  return t;
+}
+
+}  // namespace
+
+DemConfig parse_dem_config(const nlohmann::json& section) {
+  ConfigReader cfg(section, "");
+  DemConfig c;
+  c.particles = read_particles(cfg.child("particles"));
+  c.contact = read_contact_law(cfg.child("contact"));
+  auto wall_contact = cfg.optional_child("wall_contact");
+  c.wall_contact = wall_contact ? read_contact_law(std::move(*wall_contact)) : c.contact;
+  if (auto damping = cfg.optional_child("damping")) {
+    c.local_damping = damping->number("local", 0.7, Bounds{0.0, 1.0});
+    if (c.local_damping >= 1.0) damping->fail("local", "must be below 1 (1 would cancel every driving force)");
+    damping->finish();
+  }
+  c.timestep = read_timestep(cfg);
+  c.gravity = to_vec3(cfg.vec3("gravity_m_s2", {0.0, 0.0, 0.0}));
+  if (auto neighbour = cfg.optional_child("neighbour")) {
+    if (neighbour->has("skin_m")) c.skin = neighbour->positive("skin_m");
+    else neighbour->accept("skin_m");
+    neighbour->finish();
+  }
+  const auto box = bounding_box(c.particles.spheres);
+  if (cfg.has("walls")) {
+    std::set<std::string> names;
+    auto walls = cfg.children("walls");
+    for (std::size_t k = 0; k < walls.size(); ++k) c.walls.push_back(read_wall(std::move(walls[k]), k, names, c.wall_contact, box));
+  } else {
+    cfg.accept("walls");
+  }
+  if (auto pile = cfg.optional_child("pile")) c.pile = read_pile(std::move(*pile), c.wall_contact);
+  c.threads = int(cfg.integer("threads", 0, 0));
+  cfg.finish();
+  return c;
+}
+
+std::string dem_config_help() {
+  return R"((SI units; unknown keys are errors)
+  particles       (required) the spheres
+    generator       "lattice" | "list"
+    density_kg_m3   particle density (required)
+    lattice: radius_min_m, radius_max_m (required), spacing_factor (1.05: lattice pitch / 2 radius_max_m),
+             seed (1), region (required):
+               {"type":"box", "min_m":[x,y,z], "max_m":[x,y,z]} or
+               {"type":"cylinder", "radius_m", "z_min_m", "z_max_m", "axis_xy_m":[0,0]}
+    list:    spheres: [[x, y, z, radius], ...]
+  contact         (required) particle-particle law: {"law": keyword (default "linear"), parameters...}
+  wall_contact    particle-wall law, same form (default: contact); used by the coupling wall
+  damping         {"local": 0.7}  local non-viscous damping alpha in [0, 1)
+  timestep        {"fraction_of_critical": 0.2} or {"dt_s": s}; dt_s above the critical step is refused
+  gravity_m_s2    [gx, gy, gz] (default [0,0,0]); the coupler injects N g
+  neighbour       {"skin_m": s} Verlet skin (default 0.2 x the largest radius)
+  walls           [ {"type":"plane", "point_m":[..], "normal":[..], "half_size_m" (default: covers the bed),
+                     "name", "velocity_m_s":[0,0,0], "start_step":0, "contact":{law} (default wall_contact)},
+                    {"type":"facets", "vertices_m":[[x,y,z],...], "facets":[[i,j,k],...], name, velocity_m_s,
+                     start_step, contact} ]
+  pile            {"radius_m", "tip_z_m", "length_m", "sides":24, "axis_xy_m":[0,0], "velocity_m_s":[0,0,0],
+                   "start_step":0, "contact"}  closed cylinder with a flat tip
+  threads         OpenMP threads (0: OpenMP default)
+Contact-law registry:
+)" + describe_contact_laws();
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,64 @@
+#include "dfc/dem/model_builder.hpp"
+
+#include <sstream>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/dem/timestep.hpp"
+#include "dfc/dem/triangle_geometry.hpp"
+
+namespace dfc::dem {
+
+namespace {
+
+bool overlaps_wall(const GeneratedSphere& s, const Wall& wall) {
+  for (const auto& f : wall.facets)
+    if (distance_to_triangle(s.centre, wall.vertices[f[0]], wall.vertices[f[1]], wall.vertices[f[2]]) < s.radius) return true;
+  return false;
+}
+
+}  // namespace
+
+DemModel build_model(const DemConfig& c) {
+  DemModel model;
+  model.simulation = std::make_unique<Simulation>(
+      SimulationSettings{.particle_law = c.contact, .gravity = c.gravity, .local_damping = c.local_damping, .skin = c.skin, .threads = c.threads});
+  Simulation& sim = *model.simulation;
+
+  // 1. Rigid walls and the pile.
+  for (const auto& w : c.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
+  if (c.pile)
+    model.pile_wall = sim.add_wall(make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
+                                             c.pile->velocity, c.pile->start_step));
+
+  // 2. Particles; a generated sphere cut by a rigid wall would start with a huge overlap.
+  for (std::size_t k = 0; k < c.particles.spheres.size(); ++k) {
+    const GeneratedSphere& s = c.particles.spheres[k];
+    bool cut = false;
+    for (const auto& wall : sim.walls()) cut = cut || overlaps_wall(s, wall);
+    if (cut) {
+      ++model.removed_particles;
+      continue;
+    }
+    sim.add_sphere(std::int64_t(k), s.centre, s.radius, c.particles.density);
+  }
+  if (sim.particles().size() == 0) throw ConfigError("particles", "every sphere overlaps a wall or the pile; nothing is left to simulate");
+
+  // 3. Time step: the coupling wall (wall_contact) arrives later but counts now.
+  std::vector<StiffnessBound> laws{c.contact.stiffness_bound(), c.wall_contact.stiffness_bound()};
+  for (const auto& w : sim.walls()) laws.push_back(w.law.stiffness_bound());
+  model.dt_critical = critical_timestep(sim.particles(), laws);
+  if (c.timestep.dt) {
+    if (*c.timestep.dt > model.dt_critical) {
+      std::ostringstream msg;
+      msg << "dt_s = " << *c.timestep.dt << " s exceeds the critical time step " << model.dt_critical
+          << " s of these particles and stiffnesses; use fraction_of_critical (e.g. 0.2) or a smaller dt_s";
+      throw ConfigError("timestep.dt_s", msg.str());
+    }
+    model.dt = *c.timestep.dt;
+  } else {
+    model.dt = c.timestep.fraction_of_critical * model.dt_critical;
+  }
+  return model;
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,150 @@
+#include "dfc/dem/neighbour_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/dem/parallel.hpp"
+#include "dfc/dem/triangle_geometry.hpp"
+
+namespace dfc::dem {
+
+std::array<std::int64_t, 3> CellGrid::cell_of(const Vec3& x) const noexcept {
+  const auto axis = [&](double coordinate, double o, std::int64_t n) {
+    const double c = std::floor((coordinate - o) / cell_size);
+    if (!(c > 0.0)) return std::int64_t{0};  // also NaN
+    return c >= double(n - 1) ? n - 1 : std::int64_t(c);
+  };
+  return {axis(x.x, origin.x, dims[0]), axis(x.y, origin.y, dims[1]), axis(x.z, origin.z, dims[2])};
+}
+
+CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, std::vector<std::uint32_t>& order) {
+  CellGrid grid;
+  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  Vec3 hi = -lo;
+  for (const auto& x : positions) {
+    if (!is_finite(x)) throw SolverError("a particle position is not finite; the simulation has become unstable");
+    lo = {std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z)};
+    hi = {std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z)};
+  }
+  if (positions.empty()) lo = hi = Vec3{};
+  grid.origin = lo;
+  grid.cell_size = min_cell_size > 0.0 ? min_cell_size : 1.0;  // no particles with size: any cell will do
+  const Vec3 extent = hi - lo;
+  const double max_cells = 4.0 * double(positions.size()) + 64.0;
+  auto cells_along = [&](double e) { return std::floor(e / grid.cell_size) + 1.0; };
+  double total = cells_along(extent.x) * cells_along(extent.y) * cells_along(extent.z);
+  while (total > max_cells) {  // sparse or exploded packing: coarser cells
+    grid.cell_size *= std::max(1.01, std::cbrt(total / max_cells));
+    total = cells_along(extent.x) * cells_along(extent.y) * cells_along(extent.z);
+  }
+  grid.dims = {std::int64_t(cells_along(extent.x)), std::int64_t(cells_along(extent.y)), std::int64_t(cells_along(extent.z))};
+
+  // Counting sort of the slots by cell (stable, hence deterministic).
+  std::vector<std::uint32_t> cell(positions.size());
+  grid.cell_start.assign(grid.cell_count() + 1, 0);
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const auto c = grid.cell_of(positions[i]);
+    cell[i] = std::uint32_t(grid.linear_index(c[0], c[1], c[2]));
+    ++grid.cell_start[cell[i] + 1];
+  }
+  for (std::size_t c = 0; c < grid.cell_count(); ++c) grid.cell_start[c + 1] += grid.cell_start[c];
+  order.resize(positions.size());
+  std::vector<std::uint32_t> fill(grid.cell_start.begin(), grid.cell_start.end() - 1);
+  for (std::size_t i = 0; i < positions.size(); ++i) order[fill[cell[i]]++] = std::uint32_t(i);
+  return grid;
+}
+
+namespace {
+
+/// Calls visit(j) for every slot j > i in the 27 cells around particle i.
+template <class Visit>
+void for_each_later_neighbour(const CellGrid& grid, const Vec3& xi, std::uint32_t i, Visit&& visit) {
+  const auto c = grid.cell_of(xi);
+  for (std::int64_t dz = -1; dz <= 1; ++dz) {
+    const std::int64_t z = c[2] + dz;
+    if (z < 0 || z >= grid.dims[2]) continue;
+    for (std::int64_t dy = -1; dy <= 1; ++dy) {
+      const std::int64_t y = c[1] + dy;
+      if (y < 0 || y >= grid.dims[1]) continue;
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        const std::int64_t x = c[0] + dx;
+        if (x < 0 || x >= grid.dims[0]) continue;
+        const std::size_t cell = grid.linear_index(x, y, z);
+        // Slots are sorted by cell, so whole cells before i's own are skipped by j > i.
+        for (std::uint32_t j = std::max(grid.cell_start[cell], i + 1); j < grid.cell_start[cell + 1]; ++j) visit(j);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void find_pair_candidates(const CellGrid& grid, const ParticleStore& particles, double skin, int threads, std::vector<std::uint32_t>& first,
+                          std::vector<std::uint32_t>& second) {
+  const auto n = static_cast<std::int64_t>(particles.size());
+  const auto& x = particles.position;
+  const auto& r = particles.radius;
+  const auto near = [&](std::uint32_t i, std::uint32_t j) {
+    const double reach = r[i] + r[j] + skin;
+    return norm2(x[j] - x[i]) < reach * reach;
+  };
+  // Two passes (count, then fill at prefix-summed offsets): parallel, yet the
+  // list is the same as a serial search would produce.
+  std::vector<std::uint32_t> offset(std::size_t(n) + 1, 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::uint32_t count = 0;
+    for_each_later_neighbour(grid, x[std::size_t(i)], std::uint32_t(i), [&](std::uint32_t j) { count += near(std::uint32_t(i), j) ? 1u : 0u; });
+    offset[std::size_t(i) + 1] = count;
+  }
+  for (std::size_t i = 0; i < std::size_t(n); ++i) offset[i + 1] += offset[i];
+  first.resize(offset.back());
+  second.resize(offset.back());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t i = 0; i < n; ++i) {
+    std::uint32_t at = offset[std::size_t(i)];
+    for_each_later_neighbour(grid, x[std::size_t(i)], std::uint32_t(i), [&](std::uint32_t j) {
+      if (!near(std::uint32_t(i), j)) return;
+      first[at] = std::uint32_t(i);
+      second[at] = j;
+      ++at;
+    });
+  }
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> find_facet_candidates(const CellGrid& grid, const ParticleStore& particles,
+                                                                           const Wall& wall, double skin, double r_max, int threads) {
+  const auto n_facets = static_cast<std::int64_t>(wall.facet_count());
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> per_facet(static_cast<std::size_t>(n_facets));
+  if (particles.size() == 0) return {};
+  const Vec3 grid_hi = grid.origin + Vec3{double(grid.dims[0]), double(grid.dims[1]), double(grid.dims[2])} * grid.cell_size;
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads) if(n_facets * std::int64_t(particles.size()) >= min_parallel_items)
+  for (std::int64_t f = 0; f < n_facets; ++f) {
+    const auto& [ia, ib, ic] = wall.facets[std::size_t(f)];
+    const Vec3 a = wall.vertices[ia], b = wall.vertices[ib], c = wall.vertices[ic];
+    const double reach = r_max + skin;
+    const Vec3 lo = Vec3{std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z})} - Vec3{reach, reach, reach};
+    const Vec3 hi = Vec3{std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})} + Vec3{reach, reach, reach};
+    // A facet whose reach misses the particles' box has no candidates.
+    if (hi.x < grid.origin.x || hi.y < grid.origin.y || hi.z < grid.origin.z || lo.x > grid_hi.x || lo.y > grid_hi.y || lo.z > grid_hi.z)
+      continue;
+    const auto c_lo = grid.cell_of(lo);
+    const auto c_hi = grid.cell_of(hi);
+    auto& out = per_facet[std::size_t(f)];
+    for (std::int64_t z = c_lo[2]; z <= c_hi[2]; ++z)
+      for (std::int64_t y = c_lo[1]; y <= c_hi[1]; ++y)
+        for (std::int64_t x = c_lo[0]; x <= c_hi[0]; ++x) {
+          const std::size_t cell = grid.linear_index(x, y, z);
+          for (std::uint32_t p = grid.cell_start[cell]; p < grid.cell_start[cell + 1]; ++p)
+            if (distance_to_triangle(particles.position[p], a, b, c) < particles.radius[p] + skin) out.emplace_back(p, std::uint32_t(f));
+        }
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> all;
+  for (auto& list : per_facet) all.insert(all.end(), list.begin(), list.end());
+  std::sort(all.begin(), all.end());  // keys are unique: the order is fixed
+  return all;
+}
+
+}  // namespace dfc::dem

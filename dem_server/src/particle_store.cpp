@@ -1,0 +1,47 @@
+#include "dfc/dem/particle_store.hpp"
+
+#include <numbers>
+#include <string>
+
+#include "dfc/common/errors.hpp"
+
+namespace dfc::dem {
+
+void ParticleStore::add_sphere(std::int64_t particle_id, Vec3 x, double r, double density) {
+  if (!(r > 0.0) || !(density > 0.0))
+    throw UserError("particle " + std::to_string(particle_id) + " needs a positive radius and density (got r = " + std::to_string(r) +
+                    " m, rho = " + std::to_string(density) + " kg/m3)");
+  const double m = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  id.push_back(particle_id);
+  position.push_back(x);
+  velocity.push_back({});
+  angular_velocity.push_back({});
+  force.push_back({});
+  moment.push_back({});
+  radius.push_back(r);
+  mass.push_back(m);
+  inertia.push_back(0.4 * m * r * r);  // solid sphere, I = 2/5 m r^2
+}
+
+namespace {
+template <class T>
+void permute_field(std::vector<T>& field, std::span<const std::uint32_t> new_to_old) {
+  std::vector<T> out(field.size());
+  for (std::size_t k = 0; k < new_to_old.size(); ++k) out[k] = field[new_to_old[k]];
+  field.swap(out);
+}
+}  // namespace
+
+void ParticleStore::permute(std::span<const std::uint32_t> new_to_old) {
+  permute_field(id, new_to_old);
+  permute_field(position, new_to_old);
+  permute_field(velocity, new_to_old);
+  permute_field(angular_velocity, new_to_old);
+  permute_field(force, new_to_old);
+  permute_field(moment, new_to_old);
+  permute_field(radius, new_to_old);
+  permute_field(mass, new_to_old);
+  permute_field(inertia, new_to_old);
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,159 @@
+#include "dfc/dem/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <omp.h>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/dem/integrator.hpp"
+#include "dfc/dem/neighbour_search.hpp"
+#include "dfc/dem/timestep.hpp"
+#include "dfc/dem/wall_forces.hpp"
+
+namespace dfc::dem {
+
+Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)) {
+  if (settings_.particle_law.info == nullptr) throw UserError("the simulation needs a particle contact law");
+  if (!(settings_.local_damping >= 0.0 && settings_.local_damping < 1.0)) throw UserError("local damping must be in [0, 1)");
+  threads_ = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
+  pairs_.stride = settings_.particle_law.history_size();
+}
+
+void Simulation::add_sphere(std::int64_t id, Vec3 centre, double radius, double density) {
+  if (!ids_.insert(id).second) throw UserError("particle id " + std::to_string(id) + " is used twice; ids must be unique");
+  particles_.add_sphere(id, centre, radius, density);
+  stale_ = true;
+}
+
+ParticleStore& Simulation::particles_for_edit() {
+  stale_ = true;
+  return particles_;
+}
+
+std::size_t Simulation::add_wall(Wall wall) {
+  walls_.push_back(std::move(wall));
+  wall_contacts_.emplace_back();
+  stale_ = true;
+  return walls_.size() - 1;
+}
+
+void Simulation::replace_wall(std::size_t index, Wall wall) {
+  walls_.at(index) = std::move(wall);
+  wall_contacts_.at(index) = WallContacts{};  // facet indices changed meaning: no history to carry
+  stale_ = true;
+}
+
+void Simulation::set_vertex_velocities(std::size_t wall, std::span<const Vec3> velocity) {
+  Wall& w = walls_.at(wall);
+  if (velocity.size() != w.vertex_count())
+    throw UserError("wall \"" + w.name + "\" has " + std::to_string(w.vertex_count()) + " vertices but " + std::to_string(velocity.size()) +
+                    " velocities were given");
+  std::copy(velocity.begin(), velocity.end(), w.vertex_velocity.begin());
+}
+
+double Simulation::critical_timestep() const {
+  std::vector<StiffnessBound> laws{settings_.particle_law.stiffness_bound()};
+  for (const auto& w : walls_) laws.push_back(w.law.stiffness_bound());
+  return dfc::dem::critical_timestep(particles_, laws);
+}
+
+void Simulation::rebuild() {
+  double r_max = 0.0;
+  for (const double r : particles_.radius) r_max = std::max(r_max, r);
+  skin_ = settings_.skin > 0.0 ? settings_.skin : 0.2 * r_max;
+
+  // 1. Keep the history of current contacts under stable keys.
+  const HistoryArchive pair_archive = archive_history(pairs_, particles_);
+  std::vector<HistoryArchive> wall_archives;
+  for (const auto& wc : wall_contacts_) wall_archives.push_back(archive_history(wc, particles_));
+
+  // 2. Cell grid; re-sort the particles by cell so that neighbours share cache lines.
+  std::vector<std::uint32_t> order;
+  const CellGrid grid = build_cell_grid(particles_.position, 2.0 * r_max + skin_, order);
+  particles_.permute(order);
+
+  // 3. New candidate lists, with the archived history.
+  find_pair_candidates(grid, particles_, skin_, threads_, pairs_.first, pairs_.second);
+  // Orient every pair by id so that its history is independent of slot order.
+  for (std::size_t k = 0; k < pairs_.size(); ++k)
+    if (particles_.id[pairs_.first[k]] > particles_.id[pairs_.second[k]]) std::swap(pairs_.first[k], pairs_.second[k]);
+  pairs_.stride = settings_.particle_law.history_size();
+  pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
+  restore_history(pairs_, particles_, pair_archive, threads_);
+
+  bool with_couple = settings_.particle_law.has_couple();
+  std::size_t offset = pairs_.size();
+  wall_offsets_.clear();
+  std::vector<const WallContacts*> wall_lists;
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const auto candidates = find_facet_candidates(grid, particles_, walls_[w], skin_, r_max, threads_);
+    wall_contacts_[w].assign(candidates, walls_[w].law.history_size());
+    restore_history(wall_contacts_[w], particles_, wall_archives[w], threads_);
+    wall_offsets_.push_back(offset);
+    offset += wall_contacts_[w].size();
+    wall_lists.push_back(&wall_contacts_[w]);
+    with_couple = with_couple || walls_[w].law.has_couple();
+  }
+  outputs_.resize(offset, with_couple);
+  incidence_ = build_incidence(particles_.size(), pairs_, wall_lists, wall_offsets_);
+
+  reference_positions_ = particles_.position;
+  reference_vertices_.clear();
+  for (const auto& w : walls_) reference_vertices_.push_back(w.vertices);
+  max_wall_displacement_ = 0.0;
+  stale_ = false;
+  ++rebuilds_;
+}
+
+void Simulation::move_walls(double dt) {
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    Wall& wall = walls_[w];
+    for (std::size_t v = 0; v < wall.vertex_count(); ++v) {
+      wall.vertices[v] += dt * wall.vertex_velocity[v];
+      max_wall_displacement_ = std::max(max_wall_displacement_, norm(wall.vertices[v] - reference_vertices_[w][v]));
+    }
+  }
+}
+
+void Simulation::step(double dt) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw UserError("the time step must be a positive number of seconds");
+  if (stale_) rebuild();
+  for (auto& wall : walls_)
+    if (wall.motion == WallMotion::prescribed)
+      std::fill(wall.vertex_velocity.begin(), wall.vertex_velocity.end(), step_ >= wall.start_step ? wall.prescribed_velocity : Vec3{});
+
+  if (compute_contact_forces(dt)) {
+    std::ostringstream msg;
+    msg << "a contact overlap exceeded half a particle radius at step " << step_ << ": the run is unstable; use a time step below the critical "
+        << critical_timestep() << " s (or a smaller fraction of it), softer contacts or slower walls";
+    throw SolverError(msg.str());
+  }
+  const MotionReport motion =
+      integrate_motion(particles_, incidence_, outputs_, reference_positions_, {dt, settings_.gravity, settings_.local_damping}, threads_);
+  if (!motion.finite)
+    throw SolverError("a particle position or velocity became non-finite at step " + std::to_string(step_) +
+                      ": the run is unstable; reduce the time step");
+  for (std::size_t w = 0; w < walls_.size(); ++w) distribute_wall_forces(walls_[w], wall_contacts_[w], outputs_, wall_offsets_[w]);
+  move_walls(dt);
+  ++step_;
+
+  // Verlet criterion: two particles approach by at most 2 max|dx|, a particle
+  // and a facet by max|dx| + max|dx_wall|; either must stay below the skin.
+  const double max_particle = std::sqrt(motion.max_displacement2);
+  if (2.0 * max_particle >= skin_ || max_particle + max_wall_displacement_ >= skin_) stale_ = true;
+}
+
+void Simulation::run(std::int64_t steps, double dt) {
+  const double limit = critical_timestep();
+  if (dt > limit) {
+    std::ostringstream msg;
+    msg << "time step " << dt << " s exceeds the critical time step " << limit << " s of this packing and its contact stiffnesses; use at most "
+        << limit << " s (a fraction such as 0.2 of it is safer in dense packings)";
+    throw SolverError(msg.str());
+  }
+  for (std::int64_t s = 0; s < steps; ++s) step(dt);
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,82 @@
+#pragma once
+// Small builders shared by the DEM tests.
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "dfc/dem/contact_law_registry.hpp"
+#include "dfc/dem/measurements.hpp"
+#include "dfc/dem/model_builder.hpp"
+#include "dfc/dem/simulation.hpp"
+
+namespace dfc::dem::test {
+
+inline ContactLawSetting linear(double kn, double ks, double friction = 0.5, double damping_ratio = 0.0) {
+  return make_contact_law({{"law", "linear"}, {"kn_n_m", kn}, {"ks_n_m", ks}, {"friction", friction}, {"damping_ratio_normal", damping_ratio}});
+}
+
+/// A simulation without gravity or local damping: the pure contact mechanics.
+inline Simulation undamped(const ContactLawSetting& law, int threads = 1) {
+  return Simulation(SimulationSettings{.particle_law = law, .gravity = {}, .local_damping = 0.0, .skin = 0.0, .threads = threads});
+}
+
+/// 75 spheres (r 4.5-5 mm, 3 layers) in a 60 x 60 mm box on a frictional
+/// floor with frictionless side walls: all the weight ends up on the floor.
+/// A normal dashpot helps local damping settle it: the linear law has no
+/// rolling or twisting resistance, so a sphere spinning about its contact
+/// normals is stopped only by slow frictional sliding.
+inline nlohmann::json box_bed_config() {
+  const nlohmann::json smooth = {{"kn_n_m", 1e5}, {"ks_n_m", 2.5e4}, {"friction", 0.0}, {"damping_ratio_normal", 0.3}};
+  return {
+      {"particles",
+       {{"generator", "lattice"},
+        {"region", {{"type", "box"}, {"min_m", {0, 0, 0}}, {"max_m", {0.06, 0.06, 0.035}}}},
+        {"radius_min_m", 0.0045},
+        {"radius_max_m", 0.005},
+        {"density_kg_m3", 2650},
+        {"seed", 3}}},
+      {"contact", {{"law", "linear"}, {"kn_n_m", 1e5}, {"ks_n_m", 2.5e4}, {"friction", 0.5}, {"damping_ratio_normal", 0.3}}},
+      {"damping", {{"local", 0.7}}},
+      {"timestep", {{"fraction_of_critical", 0.3}}},
+      {"gravity_m_s2", {0, 0, -9.81}},
+      {"walls",
+       {{{"type", "plane"}, {"name", "floor"}, {"point_m", {0.03, 0.03, 0}}, {"normal", {0, 0, 1}}},
+        {{"type", "plane"}, {"name", "x0"}, {"point_m", {0, 0.03, 0.06}}, {"normal", {1, 0, 0}}, {"contact", smooth}},
+        {{"type", "plane"}, {"name", "x1"}, {"point_m", {0.06, 0.03, 0.06}}, {"normal", {-1, 0, 0}}, {"contact", smooth}},
+        {{"type", "plane"}, {"name", "y0"}, {"point_m", {0.03, 0, 0.06}}, {"normal", {0, 1, 0}}, {"contact", smooth}},
+        {{"type", "plane"}, {"name", "y1"}, {"point_m", {0.03, 0.06, 0.06}}, {"normal", {0, -1, 0}}, {"contact", smooth}}}},
+  };
+}
+
+struct SettledBed {
+  Simulation simulation;
+  double dt = 0.0;
+  std::int64_t settle_steps = 0;
+};
+
+/// The box bed settled until the unbalanced-force ratio is below 1e-6 (built once per process).
+inline const SettledBed& settled_box_bed() {
+  static const SettledBed bed = [] {
+    DemModel model = build_model(parse_dem_config(box_bed_config()));
+    Simulation& sim = *model.simulation;
+    std::int64_t steps = 0;
+    while (steps < 400000) {
+      sim.run(2000, model.dt);
+      steps += 2000;
+      if (measure(sim).unbalanced_force_ratio < 1e-6) break;
+    }
+    return SettledBed{sim, model.dt, steps};
+  }();
+  return bed;
+}
+
+/// A number as text with 4 significant digits, for RecordProperty.
+inline std::string figure(double value) {
+  std::ostringstream out;
+  out.precision(4);
+  out << value;
+  return out.str();
+}
+
+}  // namespace dfc::dem::test
