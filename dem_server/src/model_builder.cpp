@@ -16,6 +16,16 @@ bool overlaps_wall(const GeneratedSphere& s, const Wall& wall) {
   return false;
 }
 
+/// A sphere whose centre lies inside the (closed) pile: it would be trapped
+/// inside the pile and load its tip from within, so it is removed like one
+/// cut by a wall. The polygonal pile is inscribed in its radius, so testing
+/// against the circle removes a slightly larger region — on the safe side.
+bool inside_pile(const GeneratedSphere& s, const CylinderGeometry& g) {
+  const double dx = s.centre.x - g.axis_x;
+  const double dy = s.centre.y - g.axis_y;
+  return dx * dx + dy * dy < g.radius * g.radius && s.centre.z > g.tip_z && s.centre.z < g.tip_z + g.length;
+}
+
 }  // namespace
 
 DemModel build_model(const DemConfig& c) {
@@ -35,6 +45,7 @@ DemModel build_model(const DemConfig& c) {
     const GeneratedSphere& s = c.particles.spheres[k];
     bool cut = false;
     for (const auto& wall : sim.walls()) cut = cut || overlaps_wall(s, wall);
+    cut = cut || (c.pile && inside_pile(s, c.pile->geometry));
     if (cut) {
       ++model.removed_particles;
       continue;

@@ -3,6 +3,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/dem_backend.hpp"
+#include "dem_test_support.hpp"
 
 namespace dfc::dem {
 namespace {
@@ -144,6 +145,34 @@ TEST(DemBackend, PileMonitorsFollowThePileVelocityDirection) {
   EXPECT_TRUE(r.monitors.contains("wall_wall0_force_n"));
   EXPECT_FALSE(r.monitors.contains("interface_force_reaction"));  // uncoupled: no interface monitors
   EXPECT_TRUE(r.outputs.empty());
+}
+
+}  // namespace
+}  // namespace dfc::dem
+
+namespace dfc::dem {
+namespace {
+
+// A pile placed inside the bed region when the bed is generated: no sphere may
+// be left inside the closed pile (it would press on the tip from within and
+// show up as a negative pile force).
+TEST(DemBackend, NoGeneratedSphereIsTrappedInsideThePile) {
+  nlohmann::json config = test::box_bed_config();
+  config["pile"] = {{"radius_m", 0.012}, {"tip_z_m", 0.004}, {"length_m", 0.05}, {"axis_xy_m", {0.03, 0.03}}};
+  DemBackend backend;
+  (void)backend.configure(config);
+  std::string kind;
+  const auto arrays = backend.snapshot(kind);
+  const auto position = protocol::find_array(arrays, "particle_position")->to_f64();
+  std::size_t below_tip = 0;
+  for (std::size_t i = 0; i < position.size() / 3; ++i) {
+    const double dx = position[3 * i] - 0.03;
+    const double dy = position[3 * i + 1] - 0.03;
+    const double z = position[3 * i + 2];
+    EXPECT_FALSE(dx * dx + dy * dy < 0.012 * 0.012 && z > 0.004) << "sphere " << i << " is inside the pile";
+    if (z < 0.004) ++below_tip;
+  }
+  EXPECT_GT(position.size() / 3, below_tip) << "spheres outside the pile must remain";
 }
 
 }  // namespace
