@@ -269,7 +269,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     if (dem) log << ", " << timing.dem_steps_per_exchange << " DEM step(s) of " << timing.dt_dem << " s";
     if (continuum) log << ", " << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s";
     if (coupled) log << ", " << n_nodes << " interface nodes";
-    log << " each.\n";
+    log << " each." << std::endl;  // flushed: a supervisor reading the log sees the run start
 
     // Step 5: the exchanges.
     // Interface kinematics. The continuum returns its gridpoint velocity and

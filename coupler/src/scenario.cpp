@@ -126,7 +126,7 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
       scenario.participants.push_back(read_participant(*section, slot, scenario_dir, bin_dir, scenario.gravity_m_s2));
   participants.finish();
   if (scenario.participants.empty())
-    participants.fail("dem", "a scenario needs at least one participant: 'dem', 'continuum' or both");
+    throw ConfigError("participants", "a scenario needs at least one participant: 'dem', 'continuum' or both");
 
   if (auto coupling = root.optional_child("coupling")) {
     CouplingSpec& c = scenario.coupling;

@@ -67,7 +67,7 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
   EXPECT_EQ(error_key(d), "participants.continuum.config.gravity_m_s2");
   d = minimal();
   d["participants"] = nlohmann::json::object();
-  EXPECT_EQ(error_key(d), "participants.dem");
+  EXPECT_EQ(error_key(d), "participants");
 }
 
 TEST(Scenario, UnknownKeySuggestsTheClosestKnownKey) {

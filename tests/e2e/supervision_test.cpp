@@ -6,6 +6,10 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
 #include "command_runner.hpp"
 #include "dfc/common/hdf5_file.hpp"
 #include "e2e_paths.hpp"
@@ -16,9 +20,12 @@ namespace {
 TEST(Supervision, KilledServerEndsRunAndResultsStayReadable) {
   const auto dir = fresh_directory("supervision");
   const auto log = dir / "coupler.log";
-  // The split box runs long enough (thousands of exchanges) to be killed mid-run.
-  const pid_t coupler_pid = start_command(
-      {coupler(), "run", (e2e_dir() / "scenarios/box_split.json").string(), "--out", (dir / "run").string(), "--no-progress"}, log);
+  // The split box, made long enough (100 000 exchanges) that it is surely killed mid-run.
+  auto scenario = nlohmann::json::parse(read_text(e2e_dir() / "scenarios/box_split.json"));
+  scenario["run"]["exchanges"] = 100000;
+  const auto scenario_file = dir / "long_split.json";
+  std::ofstream(scenario_file) << scenario.dump(2);
+  const pid_t coupler_pid = start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, log);
 
   // Wait until the run is under way: the coupler prints its plan line before the first exchange.
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
