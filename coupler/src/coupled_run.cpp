@@ -94,11 +94,15 @@ Timing choose_timing(const Scenario& scenario, Participant* dem, Participant* co
       timing.dt_continuum = c.dt_s ? *c.dt_s : *suggested;
     }
     const auto dt_max = info_number(continuum->configured_info(), "dt_max");
-    const std::string fix = dt_max ? "raise coupling.continuum_steps_per_exchange to at least " +
-                                         std::to_string(static_cast<long long>(std::ceil(timing.exchange_duration() / *dt_max))) +
-                                         " or enable the continuum's mass scaling"
-                                   : "";
-    check_stable(*continuum, timing.dt_continuum, "coupling.continuum_steps_per_exchange", fix);
+    if (dem != nullptr) {
+      const std::string fix = dt_max ? "raise coupling.continuum_steps_per_exchange to at least " +
+                                           std::to_string(static_cast<long long>(std::ceil(timing.exchange_duration() / *dt_max))) +
+                                           " or enable the continuum's mass scaling"
+                                     : "";
+      check_stable(*continuum, timing.dt_continuum, "coupling.continuum_steps_per_exchange", fix);
+    } else {
+      check_stable(*continuum, timing.dt_continuum, "coupling.dt_s", "lower coupling.dt_s or leave it out to use the server's suggestion");
+    }
   }
   return timing;
 }

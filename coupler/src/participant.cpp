@@ -83,11 +83,12 @@ nlohmann::json Participant::configure(std::chrono::milliseconds deadline) {
 
 void Participant::stop() noexcept {
   try {
-    if (!process_ || !process_->exit_description()) client_->shutdown(std::chrono::milliseconds(2000));
+    // Short limits: a server that hung already cost a whole deadline.
+    if (!process_ || !process_->exit_description()) client_->shutdown(std::chrono::milliseconds(1000));
   } catch (...) {
     // It may already be gone; killing below is the fallback.
   }
-  if (process_ && !process_->wait_exit(std::chrono::milliseconds(3000))) process_->kill();
+  if (process_ && !process_->wait_exit(std::chrono::milliseconds(1000))) process_->kill();
 }
 
 }  // namespace dfc::coupler

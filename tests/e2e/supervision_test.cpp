@@ -55,3 +55,59 @@ TEST(Supervision, KilledServerEndsRunAndResultsStayReadable) {
 
 }  // namespace
 }  // namespace dfc::testing
+
+namespace dfc::testing {
+namespace {
+
+// A server that stops answering (alive but hung) misses run.deadline_s: the
+// run ends with status 1 and a message naming the server and what it was doing.
+TEST(Supervision, HungServerMissesItsDeadline) {
+  const auto dir = fresh_directory("supervision_hang");
+  const nlohmann::json scenario = {
+      {"schema_version", 1},
+      {"name", "hang"},
+      {"participants",
+       {{"continuum", {{"program", "conformance_fixture_server"}, {"args", {"--break", "hang"}}, {"config", {{"side", 3}}}}}}},
+      {"run", {{"exchanges", 5}, {"deadline_s", 2}}}};
+  std::ofstream(dir / "hang.json") << scenario.dump(2);
+  const CommandResult result =
+      run_command({coupler(), "run", (dir / "hang.json").string(), "--out", (dir / "out").string(), "--no-progress"}, std::chrono::seconds(30));
+  EXPECT_EQ(result.exit_status, 1) << result.output;
+  EXPECT_LT(result.seconds, 10.0);
+  EXPECT_NE(result.output.find("server continuum (conformance_fixture_server"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("did not answer while advancing from step 0"), std::string::npos) << result.output;
+}
+
+// Connecting to a server that is already running (scenario key `endpoint`
+// instead of `program`), e.g. one started by hand or on another host.
+TEST(Supervision, ConnectsToARunningServerAtAnEndpoint) {
+  const auto dir = fresh_directory("endpoint");
+  const pid_t server = start_command({(bin_dir() / "fdm_server").string(), "--bind", "tcp://127.0.0.1:*"}, dir / "server.log");
+  std::string endpoint;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (endpoint.empty() && std::chrono::steady_clock::now() < until) {
+    const std::string text = read_text(dir / "server.log");
+    const auto at = text.find("DFC-LISTENING ");
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos)
+      endpoint = text.substr(at + 14, text.find('\n', at) - at - 14);
+    else
+      ::usleep(50'000);
+  }
+  ASSERT_FALSE(endpoint.empty()) << read_text(dir / "server.log");
+  auto scenario = nlohmann::json::parse(read_text(e2e_dir() / "scenarios/box_unsplit.json"));
+  auto& continuum = scenario["participants"]["continuum"];
+  continuum.erase("program");
+  continuum["endpoint"] = endpoint;
+  scenario["run"]["exchanges"] = 3;
+  std::ofstream(dir / "endpoint.json") << scenario.dump(2);
+  const CommandResult result =
+      run_command({coupler(), "run", (dir / "endpoint.json").string(), "--out", (dir / "out").string(), "--no-progress"}, std::chrono::seconds(60));
+  EXPECT_EQ(result.exit_status, 0) << result.output;
+  // The coupler shut the server down at the end of the run: it exits cleanly by itself.
+  EXPECT_EQ(wait_command(server, std::chrono::seconds(10)), 0);
+  const auto file = h5::File::open_read_only(dir / "out/results.h5");
+  EXPECT_EQ(h5::read_f64(file, "/timeseries/exchange").size(), 3u);
+}
+
+}  // namespace
+}  // namespace dfc::testing

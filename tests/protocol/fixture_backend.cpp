@@ -30,6 +30,7 @@ SolverIdentity FixtureBackend::identity() const {
 nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
   ConfigReader config(section, "");
   const std::int64_t side = config.integer("side", 2, 2);
+  (void)config.vec3("gravity_m_s2", {0.0, 0.0, 0.0});  // added by the coupler to every section (SPEC.md §4.2); unused here
   config.finish();
   mesh_ = {};
   for (std::int64_t j = 0; j < side; ++j)
