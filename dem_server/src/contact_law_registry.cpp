@@ -25,7 +25,33 @@ std::vector<ContactLawInfo> build_registry() {
       .history = LinearLaw::history_columns(),
       .make = &make_law<LinearLaw>,
   });
-  // Bonded laws (linear_pbond, soft_bond, damage_bond) go here.
+  table.push_back({
+      .keyword = std::string(LinearPbondLaw::keyword),
+      .summary = "linear parallel bond: linear frictional contact plus a brittle elastic bond disc carrying force and moment",
+      .reference = "Potyondy & Cundall (2004) IJRMMS 41:1329; Itasca PFC linearpbond; reference/dem-physics.md §2",
+      .upscaling_rule = "E*, Ebar*, stiffness ratios, lambda, beta and strengths stay fixed (stiffnesses follow R); bond_gap_m scales with S",
+      .parameters = LinearPbondLaw::parameter_specs(),
+      .history = LinearPbondLaw::history_columns(),
+      .make = &make_law<LinearPbondLaw>,
+  });
+  table.push_back({
+      .keyword = std::string(SoftBondLaw::keyword),
+      .summary = "soft bond: linear softening in tension (inferred form, docs/dem_bond_laws.md), brittle in shear, then linear frictional",
+      .reference = "Itasca PFC softbond; Ma & Huang (2018); reference/dem-physics.md §1 (equations inferred, §1.2)",
+      .upscaling_rule = "E*, kappa*, lambda, beta, strengths, zeta and gamma stay fixed (stiffness follows R); bond_gap_m scales with S",
+      .parameters = SoftBondLaw::parameter_specs(),
+      .history = SoftBondLaw::history_columns(),
+      .make = &make_law<SoftBondLaw>,
+  });
+  table.push_back({
+      .keyword = std::string(DamageBondLaw::keyword),
+      .summary = "Zheng-Ciantia damage-plasticity bond: N-V-M envelope, associated flow, damage D shrinking stiffness and capacities",
+      .reference = "Zheng & Ciantia (2025) RMRE doi 10.1007/s00603-025-04411-0; reference/dem-physics.md §3; seed 001 Eqs. 1-2",
+      .upscaling_rule = "moduli, stiffness ratios, strengths and theta_c stay fixed; ucn_m, ucs_m and bond_gap_m scale with S (guide Eq. 5)",
+      .parameters = DamageBondLaw::parameter_specs(),
+      .history = DamageBondLaw::history_columns(),
+      .make = &make_law<DamageBondLaw>,
+  });
   return table;
 }
 
@@ -56,8 +82,19 @@ bool ContactLawSetting::has_couple() const {
   return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::has_couple; }, law);
 }
 
-StiffnessBound ContactLawSetting::stiffness_bound() const {
-  return std::visit([](const auto& l) { return l.stiffness_bound(); }, law);
+StiffnessBound ContactLawSetting::stiffness_bound(double radius_max) const {
+  return std::visit([radius_max](const auto& l) { return l.stiffness_bound(radius_max); }, law);
+}
+
+bool ContactLawSetting::bonded() const {
+  return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::bonded; }, law);
+}
+
+double ContactLawSetting::bond_gap() const {
+  return std::visit([](const auto& l) {
+    if constexpr (std::decay_t<decltype(l)>::bonded) return l.bond_gap;
+    else return 0.0;
+  }, law);
 }
 
 ContactLawSetting read_contact_law(ConfigReader cfg) {

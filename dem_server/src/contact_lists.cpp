@@ -73,6 +73,14 @@ const double* HistoryArchive::find(Key key) const {
   return rows_.data() + std::size_t(*it) * stride_;
 }
 
+std::vector<HistoryArchive::Key> HistoryArchive::keys_with_nonzero(std::size_t column) const {
+  std::vector<Key> out;
+  if (column >= stride_) return out;
+  for (const std::uint32_t k : sorted_)
+    if (rows_[std::size_t(k) * stride_ + column] != 0.0) out.push_back(keys_[k]);
+  return out;
+}
+
 HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles) {
   HistoryArchive archive(pairs.stride);
   if (pairs.stride == 0) return archive;

@@ -171,6 +171,13 @@ nlohmann::json DemBackend::monitors() {
   out["coordination_number"] = m.coordination_number;
   out["total_weight_n"] = m.total_weight;
   out["dt_critical_s"] = s.critical_timestep();
+  if (s.settings().particle_law.bonded()) {  // new monitors for bonded laws only: unbonded runs keep their exact set
+    const BondCounts bonds = s.bond_counts();
+    out["bonds_intact"] = bonds.intact;
+    out["bonds_damaged"] = bonds.damaged;
+    out["bonds_broken_tension"] = bonds.broken_tension;
+    out["bonds_broken_shear"] = bonds.broken_shear;
+  }
   if (model_.pile_wall) {
     out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());
     if (!out.contains("pile_force_n")) out["pile_force_n"] = 0.0;

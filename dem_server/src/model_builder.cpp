@@ -1,5 +1,6 @@
 #include "dfc/dem/model_builder.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
@@ -55,8 +56,10 @@ DemModel build_model(const DemConfig& c) {
   if (sim.particles().size() == 0) throw ConfigError("particles", "every sphere overlaps a wall or the pile; nothing is left to simulate");
 
   // 3. Time step: the coupling wall (wall_contact) arrives later but counts now.
-  std::vector<StiffnessBound> laws{c.contact.stiffness_bound(), c.wall_contact.stiffness_bound()};
-  for (const auto& w : sim.walls()) laws.push_back(w.law.stiffness_bound());
+  double r_max = 0.0;
+  for (const double r : sim.particles().radius) r_max = std::max(r_max, r);
+  std::vector<StiffnessBound> laws{c.contact.stiffness_bound(r_max), c.wall_contact.stiffness_bound(r_max)};
+  for (const auto& w : sim.walls()) laws.push_back(w.law.stiffness_bound(r_max));
   model.dt_critical = critical_timestep(sim.particles(), laws);
   if (c.timestep.dt) {
     if (*c.timestep.dt > model.dt_critical) {

@@ -54,8 +54,10 @@ void Simulation::set_vertex_velocities(std::size_t wall, std::span<const Vec3> v
 }
 
 double Simulation::critical_timestep() const {
-  std::vector<StiffnessBound> laws{settings_.particle_law.stiffness_bound()};
-  for (const auto& w : walls_) laws.push_back(w.law.stiffness_bound());
+  double r_max = 0.0;
+  for (const double r : particles_.radius) r_max = std::max(r_max, r);
+  std::vector<StiffnessBound> laws{settings_.particle_law.stiffness_bound(r_max)};
+  for (const auto& w : walls_) laws.push_back(w.law.stiffness_bound(r_max));
   return dfc::dem::critical_timestep(particles_, laws);
 }
 
@@ -70,18 +72,23 @@ void Simulation::rebuild() {
   for (const auto& wc : wall_contacts_) wall_archives.push_back(archive_history(wc, particles_));
 
   // 2. Cell grid; re-sort the particles by cell so that neighbours share cache lines.
+  // Installing bonds needs every pair within the bonding gap, which may exceed the skin.
+  const bool install = settings_.particle_law.bonded() && !bonds_installed_;
+  const double search = install ? std::max(skin_, 1.001 * settings_.particle_law.bond_gap()) : skin_;
   std::vector<std::uint32_t> order;
-  const CellGrid grid = build_cell_grid(particles_.position, 2.0 * r_max + skin_, order);
+  const CellGrid grid = build_cell_grid(particles_.position, 2.0 * r_max + search, order);
   particles_.permute(order);
 
   // 3. New candidate lists, with the archived history.
-  find_pair_candidates(grid, particles_, skin_, threads_, pairs_.first, pairs_.second);
+  find_pair_candidates(grid, particles_, search, threads_, pairs_.first, pairs_.second);
   // Orient every pair by id so that its history is independent of slot order.
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (particles_.id[pairs_.first[k]] > particles_.id[pairs_.second[k]]) std::swap(pairs_.first[k], pairs_.second[k]);
+  if (settings_.particle_law.bonded()) append_persistent_pairs(pair_archive);
   pairs_.stride = settings_.particle_law.history_size();
   pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
   restore_history(pairs_, particles_, pair_archive, threads_);
+  if (install) install_bonds();
 
   bool with_couple = settings_.particle_law.has_couple();
   std::size_t offset = pairs_.size();
@@ -105,6 +112,51 @@ void Simulation::rebuild() {
   max_wall_displacement_ = 0.0;
   stale_ = false;
   ++rebuilds_;
+}
+
+void Simulation::append_persistent_pairs(const HistoryArchive& archive) {
+  const auto bonded = archive.keys_with_nonzero(bond_state_column);
+  if (bonded.empty()) return;
+  std::vector<HistoryArchive::Key> found(pairs_.size());
+  for (std::size_t k = 0; k < pairs_.size(); ++k) found[k] = {particles_.id[pairs_.first[k]], particles_.id[pairs_.second[k]]};
+  std::sort(found.begin(), found.end());
+  std::vector<std::pair<std::int64_t, std::uint32_t>> slot_of(particles_.size());
+  for (std::size_t i = 0; i < particles_.size(); ++i) slot_of[i] = {particles_.id[i], std::uint32_t(i)};
+  std::sort(slot_of.begin(), slot_of.end());
+  const auto slot = [&](std::int64_t id) {
+    return std::lower_bound(slot_of.begin(), slot_of.end(), std::pair<std::int64_t, std::uint32_t>{id, 0})->second;
+  };
+  // Appended in key order after the searched pairs: the list stays deterministic.
+  for (const auto& key : bonded) {
+    if (std::binary_search(found.begin(), found.end(), key)) continue;
+    pairs_.first.push_back(slot(key[0]));
+    pairs_.second.push_back(slot(key[1]));
+  }
+}
+
+void Simulation::install_bonds() {
+  const double gap = settings_.particle_law.bond_gap();
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::uint32_t i = pairs_.first[k], j = pairs_.second[k];
+    const double surface_gap = norm(particles_.position[j] - particles_.position[i]) - particles_.radius[i] - particles_.radius[j];
+    if (surface_gap <= gap) set_bond_state(pairs_.row(k), BondState::intact);
+  }
+  bonds_installed_ = true;
+}
+
+BondCounts Simulation::bond_counts() const noexcept {
+  BondCounts c;
+  if (!settings_.particle_law.bonded() || pairs_.stride == 0) return c;
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    switch (bond_state(pairs_.history.data() + k * pairs_.stride)) {
+      case BondState::intact: ++c.intact; break;
+      case BondState::damaged: ++c.damaged; break;
+      case BondState::broken_tension: ++c.broken_tension; break;
+      case BondState::broken_shear: ++c.broken_shear; break;
+      case BondState::none: break;
+    }
+  }
+  return c;
 }
 
 void Simulation::move_walls(double dt) {

@@ -1,6 +1,18 @@
 // dem_throughput: time the DEM hot loop on a settled bed (particle-steps/s).
 //
 //   dem_throughput [--side N] [--layers N] [--threads "1 2"] [--steps N] [--max-settle N]
+//   dem_throughput --data FILE [--threads "1 2"] [--warmup 1000] [--steps 2000]
+//
+// --data: the peer benchmark (shared/bench/peers/README.md) on a LAMMPS data
+// file (atom_style sphere: id type diameter density x y z): kn 1e5 N/m,
+// ks 2/7 kn, mu 0.5, dt 1e-6 s, skin 0.11 mm, no local damping, floor at z = 0;
+// read at rest, --warmup steps untimed, then --steps timed. Differences from
+// the peers, documented in docs/dem_benchmarks.md: this DEM has no periodic
+// boundaries, so frictionless walls stand one largest radius outside the x and
+// y cell faces; its normal
+// dashpot is a fraction of critical (beta_n = 0.215 matches the peers'
+// gamma_n = 1.418e5 1/s for the mean pair, m_eff = 9.2e-7 kg) and it has no
+// tangential dashpot.
 //
 // 1. builds a bed of N x N x layers spheres (r 4.5-5 mm, rho 2650, linear law
 //    kn 1e5 N/m, ks kn/4, mu 0.5, beta_n 0.3) in a box with a frictional floor
@@ -11,7 +23,9 @@
 // benchmark (shared/bench/peers/README.md). This bed is not the peers' packing
 // (theirs is periodic in x and y, which this DEM does not have yet): compare
 // orders of magnitude, not digits.
+#include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -30,6 +44,8 @@ struct Options {
   std::vector<int> threads{1, 2};
   int steps = 2000;
   int max_settle = 400000;
+  std::string data;  ///< LAMMPS data file: the peer benchmark instead of the settled bed
+  int warmup = 1000;
 };
 
 Options parse(int argc, char** argv) {
@@ -40,6 +56,8 @@ Options parse(int argc, char** argv) {
     else if (a == "--layers") o.layers = std::stoi(v);
     else if (a == "--steps") o.steps = std::stoi(v);
     else if (a == "--max-settle") o.max_settle = std::stoi(v);
+    else if (a == "--data") o.data = v;
+    else if (a == "--warmup") o.warmup = std::stoi(v);
     else if (a == "--threads") {
       o.threads.clear();
       std::istringstream list(v);
@@ -69,10 +87,97 @@ nlohmann::json bed(const Options& o, int threads) {
           {"threads", threads}};
 }
 
+/// The peer packing: box bounds and spheres [x, y, z, r] of a LAMMPS data file (atom_style sphere).
+struct PeerPacking {
+  double box[3][2] = {};
+  nlohmann::json spheres = nlohmann::json::array();
+};
+
+PeerPacking read_lammps_data(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  PeerPacking pack;
+  std::string line;
+  bool atoms = false;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    if (!atoms) {
+      double lo = 0, hi = 0;
+      std::string a, b;
+      if (words >> lo >> hi >> a >> b) {
+        const int axis = a == "xlo" ? 0 : a == "ylo" ? 1 : a == "zlo" ? 2 : -1;
+        if (axis >= 0) pack.box[axis][0] = lo, pack.box[axis][1] = hi;
+      }
+      atoms = line.rfind("Atoms", 0) == 0;
+      continue;
+    }
+    if (line.rfind("Velocities", 0) == 0) break;  // the section after Atoms
+    long id = 0, type = 0;
+    double diameter = 0, density = 0, x = 0, y = 0, z = 0;
+    if (words >> id >> type >> diameter >> density >> x >> y >> z) pack.spheres.push_back({x, y, z, 0.5 * diameter});
+  }
+  if (pack.spheres.empty()) throw std::runtime_error(path + " holds no \"Atoms # sphere\" section");
+  return pack;
+}
+
+nlohmann::json peer_scenario(const PeerPacking& pack, int threads) {
+  const nlohmann::json law = {{"kn_n_m", 1e5}, {"ks_n_m", 1e5 * 2.0 / 7.0}, {"friction", 0.5}, {"damping_ratio_normal", 0.215}};
+  nlohmann::json smooth = law;
+  smooth["friction"] = 0.0;
+  // The periodic packing has spheres across the x and y faces: the side walls
+  // stand one largest radius outside the cell so that none is cut.
+  // The model builder removes spheres that start overlapping a wall, so the
+  // floor goes down to the lowest sphere bottom (the settled packing presses
+  // its bottom layer ~1 um into the peers' floor at z = 0).
+  double r_max = 0.0, floor_z = 0.0;
+  for (const auto& s : pack.spheres) {
+    r_max = std::max(r_max, s[3].get<double>());
+    floor_z = std::min(floor_z, s[2].get<double>() - s[3].get<double>());
+  }
+  const double x0 = pack.box[0][0] - r_max, x1 = pack.box[0][1] + r_max, y0 = pack.box[1][0] - r_max, y1 = pack.box[1][1] + r_max;
+  const double zc = pack.box[2][1] / 2;
+  const double xc = 0.5 * (x0 + x1), yc = 0.5 * (y0 + y1), half = (x1 - x0) + pack.box[2][1];
+  nlohmann::json walls = nlohmann::json::array({{{"type", "plane"}, {"name", "floor"}, {"point_m", {xc, yc, floor_z}}, {"normal", {0, 0, 1}}, {"half_size_m", half}}});
+  for (const auto& [point, normal] : {std::pair<std::vector<double>, std::vector<double>>{{x0, yc, zc}, {1, 0, 0}}, {{x1, yc, zc}, {-1, 0, 0}},
+                                      {{xc, y0, zc}, {0, 1, 0}}, {{xc, y1, zc}, {0, -1, 0}}})
+    walls.push_back({{"type", "plane"}, {"point_m", point}, {"normal", normal}, {"half_size_m", half}, {"contact", smooth}});
+  return {{"particles", {{"generator", "list"}, {"spheres", pack.spheres}, {"density_kg_m3", 2650}}},
+          {"contact", law},
+          {"damping", {{"local", 0.0}}},
+          {"timestep", {{"dt_s", 1e-6}}},
+          {"gravity_m_s2", {0, 0, -9.81}},
+          {"neighbour", {{"skin_m", 1.1e-4}}},
+          {"walls", walls},
+          {"threads", threads}};
+}
+
+/// The peer benchmark protocol on a data file: warm-up untimed, then timed.
+void run_peer_benchmark(const Options& o) {
+  const PeerPacking pack = read_lammps_data(o.data);
+  for (const int threads : o.threads) {
+    DemModel model = build_model(parse_dem_config(peer_scenario(pack, threads)));
+    Simulation& sim = *model.simulation;
+    if (model.removed_particles > 0) std::cout << model.removed_particles << " spheres cut by the side walls were removed\n";
+    sim.run(o.warmup, 1e-6);
+    const std::size_t rebuilds = sim.rebuild_count();
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.run(o.steps, 1e-6);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const Measurements m = measure(sim);
+    std::cout << "threads " << sim.threads() << ": " << double(sim.particles().size()) * o.steps / seconds << " particle-steps/s ("
+              << seconds << " s for " << o.steps << " steps of " << sim.particles().size() << " particles, " << sim.rebuild_count() - rebuilds
+              << " rebuilds, coordination " << m.coordination_number << ", kinetic energy " << m.kinetic_energy << " J)\n";
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
   const Options o = parse(argc, argv);
+  if (!o.data.empty()) {
+    run_peer_benchmark(o);
+    return 0;
+  }
   // 1. Settle.
   DemModel model = build_model(parse_dem_config(bed(o, 0)));
   Simulation& settling = *model.simulation;

@@ -17,12 +17,15 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/dem/contact_model.hpp"
+#include "dfc/dem/damage_bond_law.hpp"
 #include "dfc/dem/linear_law.hpp"
+#include "dfc/dem/linear_pbond_law.hpp"
+#include "dfc/dem/soft_bond_law.hpp"
 
 namespace dfc::dem {
 
 /// Every law the kernels are compiled for. Dispatch: std::visit once per step.
-using ContactLaw = std::variant<LinearLaw>;
+using ContactLaw = std::variant<LinearLaw, LinearPbondLaw, SoftBondLaw, DamageBondLaw>;
 
 struct ContactLawInfo {
   std::string keyword;
@@ -46,7 +49,12 @@ struct ContactLawSetting {
 
   [[nodiscard]] std::size_t history_size() const;
   [[nodiscard]] bool has_couple() const;
-  [[nodiscard]] StiffnessBound stiffness_bound() const;
+  /// For particles of radius up to radius_max (m): deformability laws scale with R.
+  [[nodiscard]] StiffnessBound stiffness_bound(double radius_max) const;
+  /// Bonded laws keep a BondState in history column 0 (bond_state.hpp).
+  [[nodiscard]] bool bonded() const;
+  /// m, bonding gap of a bonded law (pairs with surface gap <= it are bonded at start); 0 otherwise.
+  [[nodiscard]] double bond_gap() const;
 };
 
 /// Reads {"law": keyword (default "linear"), <parameters>...} and finishes the

@@ -86,6 +86,9 @@ class HistoryArchive {
   /// The row stored under `key`, or nullptr.
   [[nodiscard]] const double* find(Key key) const;
   [[nodiscard]] std::size_t size() const noexcept { return keys_.size(); }
+  /// Keys, in increasing order, whose row is non-zero in `column` (e.g. the
+  /// bond state: pairs that stay candidates however far apart they move).
+  [[nodiscard]] std::vector<Key> keys_with_nonzero(std::size_t column) const;
 
  private:
   std::size_t stride_;

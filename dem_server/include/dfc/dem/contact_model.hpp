@@ -70,9 +70,10 @@ concept ContactLawKernel = requires(const Law law, const ContactKinematics& k, d
   { Law::history_size } -> std::convertible_to<std::size_t>;  // doubles of history per contact
   { Law::has_couple } -> std::convertible_to<bool>;           // returns a pure couple as well as a force
   { Law::acts_across_gap } -> std::convertible_to<bool>;      // false: a contact with overlap <= 0 carries nothing
+  { Law::bonded } -> std::convertible_to<bool>;               // keeps a BondState in history column 0 (bond_state.hpp)
   { law.evaluate(k, history) } -> std::same_as<ContactForce>;
   { law.separate(history) } -> std::same_as<void>;             // the contact opened: reset its history
-  { law.stiffness_bound() } -> std::same_as<StiffnessBound>;
+  { law.stiffness_bound(1.0) } -> std::same_as<StiffnessBound>;  // for radii up to the argument (m)
 };
 
 }  // namespace dfc::dem

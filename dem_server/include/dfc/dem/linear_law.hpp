@@ -43,6 +43,7 @@ struct LinearLaw {
   static constexpr std::size_t history_size = 3;
   static constexpr bool has_couple = false;
   static constexpr bool acts_across_gap = false;
+  static constexpr bool bonded = false;
 
   double kn = 0.0;                    ///< N/m
   double ks = 0.0;                    ///< N/m
@@ -54,7 +55,7 @@ struct LinearLaw {
   [[nodiscard]] static std::vector<HistoryColumn> history_columns();
   [[nodiscard]] static LinearLaw from_parameters(std::span<const double> values);
 
-  [[nodiscard]] StiffnessBound stiffness_bound() const noexcept { return {kn, ks}; }
+  [[nodiscard]] StiffnessBound stiffness_bound(double /*radius_max*/) const noexcept { return {kn, ks}; }
 
   void separate(double* history) const noexcept { history[0] = history[1] = history[2] = 0.0; }
 

@@ -11,12 +11,19 @@
 //      vertices with their velocities.
 // The same input and thread count give the same result bit for bit, and so
 // does any other thread count (no sum depends on how work is split).
+//
+// Bonds (bonded particle laws, bond_state.hpp): at the first rebuild every
+// pair whose surface gap is at most the law's bond_gap is bonded. From then
+// on every pair that was ever bonded stays in the pair list at every rebuild
+// (the persistent bond list), so a bond keeps its history however far its
+// particles separate before it breaks, and broken bonds stay counted.
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <unordered_set>
 #include <vector>
 
+#include "dfc/dem/bond_state.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/contact_lists.hpp"
 #include "dfc/dem/particle_store.hpp"
@@ -72,9 +79,15 @@ class Simulation {
   [[nodiscard]] double skin() const noexcept { return skin_; }
   [[nodiscard]] int threads() const noexcept { return threads_; }
   [[nodiscard]] const SimulationSettings& settings() const noexcept { return settings_; }
+  /// Bonds by state over the particle pairs (all zero for an unbonded law).
+  [[nodiscard]] BondCounts bond_counts() const noexcept;
 
  private:
   void rebuild();
+  /// Appends the pairs of `archive` with a bond (ever) that the search did not find.
+  void append_persistent_pairs(const HistoryArchive& archive);
+  /// Bonds every pair with a surface gap <= the law's bond gap (first rebuild).
+  void install_bonds();
   /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
   bool compute_contact_forces(double dt);
   void move_walls(double dt);
@@ -98,6 +111,7 @@ class Simulation {
   std::int64_t step_ = 0;
   std::size_t rebuilds_ = 0;
   bool stale_ = true;
+  bool bonds_installed_ = false;
 };
 
 }  // namespace dfc::dem

@@ -1,0 +1,40 @@
+#pragma once
+// Relative motion of the two bodies across a bond during one step, split in
+// the contact frame (reference/dem-physics.md §2.3, §8 item 3), and the
+// rotation of stored in-plane vectors with the contact plane.
+//
+// Sign convention of every bonded law (reference §8 item 7 asks for one):
+// opening and the normal bond force N are positive in TENSION (unlike the
+// compression-positive linear law, whose no-tension spring it reuses as is).
+// Stored shear forces and moments are those acting on the first body.
+#include "dfc/dem/contact_model.hpp"
+#include "dfc/dem/linear_law.hpp"
+
+namespace dfc::dem {
+
+struct BondIncrements {
+  double normal = 0.0;  ///< m, Δδ_n = v_n dt, > 0 opening
+  Vec3 shear;           ///< m, Δδ_s = v_t dt (second body relative to the first, in the contact plane)
+  double twist = 0.0;   ///< rad, Δθ_t = (ω2 - ω1)·n dt
+  Vec3 bend;            ///< rad, Δθ_b = in-plane part of (ω2 - ω1) dt
+};
+
+[[nodiscard]] inline BondIncrements bond_increments(const ContactKinematics& k) noexcept {
+  const Vec3& n = k.normal;
+  const double vn = dot(k.relative_velocity, n);
+  const double wn = dot(k.relative_angular_velocity, n);
+  return {vn * k.dt, k.dt * (k.relative_velocity - vn * n), wn * k.dt, k.dt * (k.relative_angular_velocity - wn * n)};
+}
+
+[[nodiscard]] inline Vec3 load_vec3(const double* h) noexcept { return {h[0], h[1], h[2]}; }
+inline void store_vec3(double* h, const Vec3& v) noexcept {
+  h[0] = v.x;
+  h[1] = v.y;
+  h[2] = v.z;
+}
+/// A stored in-plane vector (shear force, bending moment, shear or bending
+/// displacement) carried into the current contact plane, magnitude kept
+/// (the same first-order rotation as the linear law's shear force).
+[[nodiscard]] inline Vec3 load_in_plane(const double* h, const Vec3& normal) noexcept { return rotate_into_contact_plane(load_vec3(h), normal); }
+
+}  // namespace dfc::dem

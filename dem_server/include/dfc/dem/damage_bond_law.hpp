@@ -1,0 +1,114 @@
+#pragma once
+// `damage_bond`: the Zheng–Ciantia damage-plasticity bond for porous soft
+// rock (Zheng & Ciantia 2025, RMRE, doi 10.1007/s00603-025-04411-0;
+// reference/dem-physics.md §3; seed 001 §2.1 Eqs. 1–2, Table 1).
+// Implemented from the equations only (reference §0, no-copy rule).
+//
+//   forces (guide Eq. 1, total form; equal to the code's incremental update
+//   with damaged stiffnesses, §3.1):
+//     N = (1-D) k̄_n A (u_n - u_n^p),  V = (1-D) k̄_s A (u_s - u_s^p),
+//     M_b = (1-D) k̄_n I (θ_b - θ_b^p),  M_t = (1-D) k̄_s J θ_t (elastic, §3.1)
+//     k̄_n = Ē*/(R1+R2), k̄_s = k̄_n/κ̄*, R̄ = λ R_min (§2.1–2.2)
+//   capacities (guide Eq. 4, §3.3): [N̄, V̄, M̃] = [σ_0 A, C A, σ_t I/R̄²](1-D),
+//     σ_0 = σ_t in tension, σ_c in compression (asymmetric envelope)
+//   envelope (seed 001 Eq. 1, §3.2): damage_envelope.hpp
+//   damage (seed 001 Eq. 2 as CORRECTED by reference §3.4, each plastic
+//   measure over its own characteristic value):
+//     D = 1 - exp(-(ū_n^p/u_cn + ū_s^p/u_cs + θ̄_b^p/θ_c))
+//     with ū^p the ACCUMULATED plastic measures Σ|Δu^p| (equal to |u^p| on a
+//     monotonic path; on cyclic paths they keep D non-decreasing, which |u^p|
+//     would not); D is also never lowered.
+//   breakage (§3.6): D > 0.99; then the linear frictional contact alone.
+//   linear contact (§3.6): k_n = π E* R_min²/(R1+R2), k_s = k_n/κ*, friction μ,
+//     acting in parallel once D > 0 and the surfaces overlap; not while intact.
+//
+// Why the return needs no iteration on D: N and N̄ (and V, V̄ and M̆, M̃)
+// carry the same factor (1-D), so N/N̄ = k̄_n (u_n - u_n^p)/σ_0 depends on the
+// elastic displacements only. The return is then a closest-point projection
+// in these normalised coordinates with the energy-norm weights
+//   w = (σ_0²/k̄_n, C²/k̄_s, σ_t²/(4 k̄_n))   (common factor A(1-D) dropped;
+//   I/R̄² = A/4), after which D follows explicitly from the plastic measures.
+//
+// Breakage label: broken_tension when N >= 0 and the normal plastic measure
+// is the largest term of the damage exponent; broken_shear otherwise (shear,
+// bending and compressive crushing).
+//
+// History (23): state, D, u_n, u_s (3), θ_t, θ_b (3), u_n^p, u_s^p (3),
+// θ_b^p (3), ū_n^p, ū_s^p, θ̄_b^p, linear shear force (3).
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "dfc/dem/bond_geometry.hpp"
+#include "dfc/dem/bond_increments.hpp"
+#include "dfc/dem/bond_state.hpp"
+#include "dfc/dem/damage_envelope.hpp"
+
+namespace dfc::dem {
+
+struct DamageBondLaw {
+  static constexpr std::string_view keyword = "damage_bond";
+  enum Column : std::size_t {
+    state = 0, damage = 1, opening = 2, slip = 3, twist = 6, bend = 7,
+    plastic_opening = 10, plastic_slip = 11, plastic_bend = 14,
+    accumulated_opening = 17, accumulated_slip = 18, accumulated_bend = 19, linear_shear = 20,
+  };
+  static constexpr std::size_t history_size = 23;
+  static constexpr bool has_couple = true;
+  static constexpr bool acts_across_gap = true;
+  static constexpr bool bonded = true;
+  static constexpr double breakage_damage = 0.99;  ///< reference §3.6
+
+  double emod = 0.0;                  ///< Pa, E* (linear contact)
+  double kratio = 1.0;                ///< -, κ*
+  double friction = 0.5;              ///< -, μ
+  double damping_ratio_normal = 0.0;  ///< - (linear contact)
+  double bond_emod = 0.0;             ///< Pa, Ē*
+  double bond_kratio = 1.0;           ///< -, κ̄*
+  double radius_multiplier = 1.0;     ///< -, λ
+  double tensile_strength = 0.0;      ///< Pa, σ_t
+  double compressive_strength = 0.0;  ///< Pa, σ_c
+  double cohesion = 0.0;              ///< Pa, C
+  double u_cn = 0.0;                  ///< m, normal softening length
+  double u_cs = 0.0;                  ///< m, shear softening length
+  double theta_c = 0.0;               ///< rad, bending softening rotation
+  double bond_gap = 0.0;              ///< m
+
+  [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
+  [[nodiscard]] static std::vector<HistoryColumn> history_columns();
+  [[nodiscard]] static DamageBondLaw from_parameters(std::span<const double> values);
+
+  [[nodiscard]] StiffnessBound stiffness_bound(double radius_max) const noexcept {
+    const double kn = deformability_kn_bound(emod, radius_max);
+    const double kbn = deformability_kn_bound(bond_emod, radius_max) * radius_multiplier * radius_multiplier;
+    return {kn + kbn, kn / kratio + kbn / bond_kratio};
+  }
+
+  void separate(double* history) const noexcept { store_vec3(history + linear_shear, {}); }
+
+  /// D of the corrected Eq. 2 from the accumulated plastic measures.
+  [[nodiscard]] double damage_from(double opening_p, double slip_p, double bend_p) const noexcept;
+
+  /// Elastic trial, return to the envelope, damage and breakage of a bonded
+  /// contact; returns the bond's force and couple on the first body.
+  [[nodiscard]] ContactForce update_bond(const ContactKinematics& k, double* history) const noexcept;
+
+  [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
+    ContactForce out{};
+    const BondState s = bond_state(history);
+    if (is_bonded(s)) out = update_bond(k, history);
+    // The linear contact acts once the bond is damaged or gone (§3.6).
+    if (bond_state(history) == BondState::intact || k.overlap <= 0.0) {
+      separate(history);
+      return out;
+    }
+    const double kn = deformability_kn(k, emod);
+    const LinearLaw linear{.kn = kn, .ks = kn / kratio, .friction = friction, .damping_ratio_normal = damping_ratio_normal};
+    out.on_first += linear.evaluate(k, history + linear_shear).on_first;
+    return out;
+  }
+};
+
+static_assert(ContactLawKernel<DamageBondLaw>);
+
+}  // namespace dfc::dem

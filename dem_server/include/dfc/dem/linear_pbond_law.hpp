@@ -1,0 +1,97 @@
+#pragma once
+// `linear_pbond`: the linear parallel bond (Potyondy & Cundall 2004, IJRMMS
+// 41:1329; Itasca PFC linearpbond; reference/dem-physics.md §2).
+//
+//   linear part (always, while the surfaces overlap): the `linear` law with
+//     k_n = π E* R_min²/(R1+R2), k_s = k_n/κ*                    (§2.2)
+//   bond (while bonded), disc of radius R̄ = λ̄ R_min:             (§2.1)
+//     incremental N, F_s, M_t, M_b with k̄_n = Ē*/(R1+R2), k̄_s = k̄_n/κ̄*  (§2.3)
+//     σ̄ = N/A + β̄|M_b|R̄/I >= σ̄_c  -> broken in tension       (§2.4–2.5)
+//     τ̄ = |F_s|/A + β̄|M_t|R̄/J >= c̄ - σ tan φ̄ -> broken in shear
+//   A broken bond is removed with its force, moment and stiffness: the
+//   contact is the linear frictional one alone. The tension test comes
+//   first (the order is [unconfirmed] in the reference; with brittle failure
+//   it only decides the label when both limits are passed in one step).
+//
+// History (12): state, BondLoad (8), linear shear force (3).
+#include <cmath>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "dfc/dem/bond_state.hpp"
+#include "dfc/dem/parallel_bond_forces.hpp"
+
+namespace dfc::dem {
+
+struct LinearPbondLaw {
+  static constexpr std::string_view keyword = "linear_pbond";
+  static constexpr std::size_t load_offset = 1;
+  static constexpr std::size_t linear_offset = load_offset + BondLoad::history_size;
+  static constexpr std::size_t history_size = linear_offset + LinearLaw::history_size;
+  static constexpr bool has_couple = true;
+  static constexpr bool acts_across_gap = true;  // a bond holds across a gap
+  static constexpr bool bonded = true;
+
+  double emod = 0.0;                  ///< Pa, E* of the linear part
+  double kratio = 1.0;                ///< -, κ* = k_n / k_s
+  double friction = 0.5;              ///< -
+  double damping_ratio_normal = 0.0;  ///< - (linear part)
+  double bond_emod = 0.0;             ///< Pa, Ē*
+  double bond_kratio = 1.0;           ///< -, κ̄*
+  double radius_multiplier = 1.0;     ///< -, λ̄
+  double moment_factor = 1.0;         ///< -, β̄
+  double tensile_strength = 0.0;      ///< Pa, σ̄_c
+  double cohesion = 0.0;              ///< Pa, c̄
+  double tan_friction_angle = 0.0;    ///< -, tan φ̄
+  double bond_gap = 0.0;              ///< m, pairs with a surface gap <= this are bonded at start
+
+  [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
+  [[nodiscard]] static std::vector<HistoryColumn> history_columns();
+  [[nodiscard]] static LinearPbondLaw from_parameters(std::span<const double> values);
+
+  [[nodiscard]] StiffnessBound stiffness_bound(double radius_max) const noexcept {
+    const double kn = deformability_kn_bound(emod, radius_max);
+    const double kbn = deformability_kn_bound(bond_emod, radius_max) * radius_multiplier * radius_multiplier;
+    return {kn + kbn, kn / kratio + kbn / bond_kratio};
+  }
+
+  void separate(double* history) const noexcept {
+    for (std::size_t c = linear_offset; c < history_size; ++c) history[c] = 0.0;
+  }
+
+  [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
+    ContactForce out{};
+    BondState state = bond_state(history);
+    if (state == BondState::intact) {
+      const BondSection s = bond_section(k, radius_multiplier);
+      const double kbn = deformability_bond_kn(k, bond_emod);
+      BondLoad load = BondLoad::load(history + load_offset, k.normal);
+      load.add_elastic(bond_increments(k), s, kbn, kbn / bond_kratio);
+      const PeakStresses peak = peak_stresses(load, s, moment_factor);
+      const double strength = shear_strength(load.normal / s.area, cohesion, tan_friction_angle, tensile_strength);
+      if (peak.tension >= tensile_strength) state = BondState::broken_tension;
+      else if (peak.shear >= strength) state = BondState::broken_shear;
+      if (state == BondState::intact) {
+        load.store(history + load_offset);
+        out = {load.force(k.normal), load.couple(k.normal)};
+      } else {
+        set_bond_state(history, state);
+        BondLoad::clear(history + load_offset);
+      }
+    }
+    double* shear = history + linear_offset;
+    if (k.overlap <= 0.0) {
+      separate(history);
+      return out;
+    }
+    const double kn = deformability_kn(k, emod);
+    const LinearLaw linear{.kn = kn, .ks = kn / kratio, .friction = friction, .damping_ratio_normal = damping_ratio_normal};
+    out.on_first += linear.evaluate(k, shear).on_first;
+    return out;
+  }
+};
+
+static_assert(ContactLawKernel<LinearPbondLaw>);
+
+}  // namespace dfc::dem

@@ -1,0 +1,71 @@
+#pragma once
+// The force and moment carried by an elastic bond disc, their incremental
+// update and the peak stresses at its periphery — the machinery shared by
+// linear_pbond and soft_bond (reference/dem-physics.md §2.3–2.5; Potyondy &
+// Cundall 2004, Eqs. 8–13).
+#include <cmath>
+
+#include "dfc/dem/bond_geometry.hpp"
+#include "dfc/dem/bond_increments.hpp"
+
+namespace dfc::dem {
+
+/// Bond force and moment on the first body; N > 0 in tension.
+/// History layout (8 doubles from `h`): N, F_s (3), M_t, M_b (3).
+struct BondLoad {
+  static constexpr std::size_t history_size = 8;
+
+  double normal = 0.0;  ///< N, N (tension positive)
+  Vec3 shear;           ///< N, in the contact plane
+  double twist = 0.0;   ///< N m, about n
+  Vec3 bend;            ///< N m, in the contact plane
+
+  /// Reads the stored load, carrying shear and bending into the current plane.
+  [[nodiscard]] static BondLoad load(const double* h, const Vec3& normal) noexcept {
+    return {h[0], load_in_plane(h + 1, normal), h[4], load_in_plane(h + 5, normal)};
+  }
+  void store(double* h) const noexcept {
+    h[0] = normal;
+    store_vec3(h + 1, shear);
+    h[4] = twist;
+    store_vec3(h + 5, bend);
+  }
+  static void clear(double* h) noexcept {
+    for (std::size_t c = 0; c < history_size; ++c) h[c] = 0.0;
+  }
+
+  /// Reference §2.3: F̄_n += k̄_n A Δδ_n, F̄_s += k̄_s A Δδ_s, M̄_t += k̄_s J Δθ_t,
+  /// M̄_b += k̄_n I Δθ_b (signs for tension-positive N and loads on the first
+  /// body: opening stretches the springs, the second body's motion drags the first).
+  void add_elastic(const BondIncrements& d, const BondSection& s, double kn, double ks) noexcept {
+    normal += kn * s.area * d.normal;
+    shear += (ks * s.area) * d.shear;
+    twist += ks * s.polar * d.twist;
+    bend += (kn * s.inertia) * d.bend;
+  }
+
+  /// Force on the first body: tension pulls it towards the second (+n).
+  [[nodiscard]] Vec3 force(const Vec3& n) const noexcept { return shear + normal * n; }
+  [[nodiscard]] Vec3 couple(const Vec3& n) const noexcept { return bend + twist * n; }
+};
+
+/// Reference §2.4 (pbSMax): σ̄ = N/A + β̄ |M_b| R̄ / I (tension positive),
+/// τ̄ = |F_s|/A + β̄ |M_t| R̄ / J; β̄ the moment-contribution factor.
+struct PeakStresses {
+  double tension = 0.0;  ///< Pa
+  double shear = 0.0;    ///< Pa
+};
+
+[[nodiscard]] inline PeakStresses peak_stresses(const BondLoad& f, const BondSection& s, double moment_factor) noexcept {
+  return {f.normal / s.area + moment_factor * norm(f.bend) * s.radius / s.inertia,
+          norm(f.shear) / s.area + moment_factor * std::abs(f.twist) * s.radius / s.polar};
+}
+
+/// Reference §2.5 (pbShearStrength): τ̄_c = c̄ - σ tan φ̄ with σ = N/A
+/// (tension positive) capped at the tensile strength σ̄_c; never below 0.
+[[nodiscard]] inline double shear_strength(double mean_normal_stress, double cohesion, double tan_friction_angle, double tensile_strength) noexcept {
+  const double sigma = std::min(mean_normal_stress, tensile_strength);
+  return std::max(0.0, cohesion - sigma * tan_friction_angle);
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,132 @@
+#include "dfc/dem/damage_bond_law.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dfc::dem {
+
+std::vector<ParameterSpec> DamageBondLaw::parameter_specs() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const Bounds positive{0.0, inf, true};
+  const Bounds non_negative{0.0, inf, false};
+  // Upscaling (guide Eq. 5, reference §3.7): moduli, stiffness ratios and
+  // strengths and θ_c stay fixed; u_cn, u_cs and the bonding gap scale with S.
+  return {
+      {"emod_pa", "Pa", std::nullopt, "effective modulus E* of the linear contact, k_n = pi E* R_min^2/(R1+R2)", positive, 0.0},
+      {"kratio", "-", 1.0, "normal-to-shear stiffness ratio kappa* of the linear contact", positive, 0.0},
+      {"friction", "-", 0.5, "Coulomb friction coefficient mu of the linear contact", non_negative, 0.0},
+      {"damping_ratio_normal", "-", 0.0, "normal viscous damping of the linear contact, fraction of critical", Bounds{0.0, 1.0}, 0.0},
+      {"bond_emod_pa", "Pa", std::nullopt, "bond effective modulus Ebar*, kbar_n = Ebar*/(R1+R2) [Pa/m]", positive, 0.0},
+      {"bond_kratio", "-", 1.0, "bond normal-to-shear stiffness ratio kappabar*", positive, 0.0},
+      {"bond_rmul", "-", 1.0, "bond radius multiplier lambda: Rbar = lambda min(R1, R2)", positive, 0.0},
+      {"ten_pa", "Pa", std::nullopt, "bond tensile strength sigma_t (Nbar in tension, Mtilde)", positive, 0.0},
+      {"com_pa", "Pa", std::nullopt, "bond compressive strength sigma_c (Nbar in compression)", positive, 0.0},
+      {"coh_pa", "Pa", std::nullopt, "bond shear strength C (Vbar)", positive, 0.0},
+      {"ucn_m", "m", std::nullopt, "normal softening length u_cn of the damage law", positive, 1.0},
+      {"ucs_m", "m", std::nullopt, "shear softening length u_cs of the damage law", positive, 1.0},
+      {"theta_c_rad", "rad", std::nullopt, "bending softening rotation theta_c of the damage law", positive, 0.0},
+      {"bond_gap_m", "m", 0.0, "pairs whose surface gap is at most this at start are bonded", non_negative, 1.0},
+  };
+}
+
+std::vector<HistoryColumn> DamageBondLaw::history_columns() {
+  return {{"bond_state", "-"},        {"damage", "-"},           {"opening", "m"},          {"slip_x", "m"},
+          {"slip_y", "m"},            {"slip_z", "m"},           {"twist", "rad"},          {"bend_x", "rad"},
+          {"bend_y", "rad"},          {"bend_z", "rad"},         {"plastic_opening", "m"},  {"plastic_slip_x", "m"},
+          {"plastic_slip_y", "m"},    {"plastic_slip_z", "m"},   {"plastic_bend_x", "rad"}, {"plastic_bend_y", "rad"},
+          {"plastic_bend_z", "rad"},  {"accumulated_plastic_opening", "m"}, {"accumulated_plastic_slip", "m"},
+          {"accumulated_plastic_bend", "rad"}, {"shear_force_x", "N"}, {"shear_force_y", "N"}, {"shear_force_z", "N"}};
+}
+
+DamageBondLaw DamageBondLaw::from_parameters(std::span<const double> v) {
+  return {.emod = v[0], .kratio = v[1], .friction = v[2], .damping_ratio_normal = v[3], .bond_emod = v[4], .bond_kratio = v[5],
+          .radius_multiplier = v[6], .tensile_strength = v[7], .compressive_strength = v[8], .cohesion = v[9], .u_cn = v[10],
+          .u_cs = v[11], .theta_c = v[12], .bond_gap = v[13]};
+}
+
+double DamageBondLaw::damage_from(double opening_p, double slip_p, double bend_p) const noexcept {
+  return 1.0 - std::exp(-(opening_p / u_cn + slip_p / u_cs + bend_p / theta_c));
+}
+
+namespace {
+
+/// Unit vector of v, or zero.
+Vec3 direction(const Vec3& v) noexcept {
+  const double l = norm(v);
+  return l > 0.0 ? (1.0 / l) * v : Vec3{};
+}
+
+}  // namespace
+
+ContactForce DamageBondLaw::update_bond(const ContactKinematics& k, double* h) const noexcept {
+  const Vec3& n = k.normal;
+  const BondSection s = bond_section(k, radius_multiplier);
+  const double kn = deformability_bond_kn(k, bond_emod);
+  const double ks = kn / bond_kratio;
+
+  // 1. Total displacements (rotated with the contact plane) and the plastic parts.
+  const BondIncrements d = bond_increments(k);
+  const double u_n = h[opening] + d.normal;
+  const Vec3 u_s = load_in_plane(h + slip, n) + d.shear;
+  const double theta_t = h[twist] + d.twist;
+  const Vec3 theta_b = load_in_plane(h + bend, n) + d.bend;
+  double u_np = h[plastic_opening];
+  Vec3 u_sp = load_in_plane(h + plastic_slip, n);
+  Vec3 theta_bp = load_in_plane(h + plastic_bend, n);
+
+  // 2. Elastic trial in normalised coordinates (the (1-D) factors cancel).
+  double e_n = u_n - u_np;
+  Vec3 e_s = u_s - u_sp;
+  Vec3 e_b = theta_b - theta_bp;
+  const double sigma_0 = e_n >= 0.0 ? tensile_strength : compressive_strength;
+  const EnvelopePoint trial{kn * e_n / sigma_0, ks * norm(e_s) / cohesion, kn * norm(e_b) * s.radius / tensile_strength};
+  double damage_value = h[damage];
+  if (damage_envelope(trial) > 0.0) {
+    // 3. Closest-point return (energy norm) and the plastic increments it implies.
+    const ReturnWeights w{sigma_0 * sigma_0 / kn, cohesion * cohesion / ks, tensile_strength * tensile_strength / (4.0 * kn)};
+    const EnvelopePoint x = closest_admissible_point(trial, w);
+    const double e_n_new = x.n * sigma_0 / kn;
+    const Vec3 e_s_new = (x.v * cohesion / ks) * direction(e_s);
+    const Vec3 e_b_new = (x.m * tensile_strength / (kn * s.radius)) * direction(e_b);
+    h[accumulated_opening] += std::abs(e_n - e_n_new);
+    h[accumulated_slip] += norm(e_s - e_s_new);
+    h[accumulated_bend] += norm(e_b - e_b_new);
+    u_np += e_n - e_n_new;
+    u_sp += e_s - e_s_new;
+    theta_bp += e_b - e_b_new;
+    e_n = e_n_new;
+    e_s = e_s_new;
+    e_b = e_b_new;
+    // 4. Damage (corrected Eq. 2), never lowered.
+    damage_value = std::max(damage_value, damage_from(h[accumulated_opening], h[accumulated_slip], h[accumulated_bend]));
+  }
+
+  // 5. Breakage (§3.6): the bond and its displacements are removed.
+  if (damage_value > breakage_damage) {
+    const double normal_term = h[accumulated_opening] / u_cn;
+    const bool tensile = e_n >= 0.0 && normal_term >= h[accumulated_slip] / u_cs && normal_term >= h[accumulated_bend] / theta_c;
+    for (std::size_t c = 1; c < linear_shear; ++c) h[c] = 0.0;
+    h[damage] = 1.0;
+    set_bond_state(h, tensile ? BondState::broken_tension : BondState::broken_shear);
+    return {};
+  }
+  h[damage] = damage_value;
+  set_bond_state(h, damage_value > 0.0 ? BondState::damaged : BondState::intact);
+  h[opening] = u_n;
+  store_vec3(h + slip, u_s);
+  h[twist] = theta_t;
+  store_vec3(h + bend, theta_b);
+  h[plastic_opening] = u_np;
+  store_vec3(h + plastic_slip, u_sp);
+  store_vec3(h + plastic_bend, theta_bp);
+
+  // 6. Forces (Eq. 1) on the first body: tension pulls it along +n.
+  const double intact = 1.0 - damage_value;
+  const double normal_force = intact * kn * s.area * e_n;
+  const Vec3 shear_force = (intact * ks * s.area) * e_s;
+  const Vec3 couple = (intact * kn * s.inertia) * e_b + (intact * ks * s.polar * theta_t) * n;
+  return {shear_force + normal_force * n, couple};
+}
+
+}  // namespace dfc::dem

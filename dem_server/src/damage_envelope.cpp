@@ -1,0 +1,126 @@
+#include "dfc/dem/damage_envelope.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dfc::dem {
+
+namespace {
+
+constexpr double bending_exponent = 1.001;  // seed 001 Eq. 1: |M̆/M̃|^1.001
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+/// The (n, v) part h = n² + v⁴/(1 - n²) and the objective of the inner problem.
+struct InnerProblem {
+  EnvelopePoint trial;
+  ReturnWeights w;
+  double mu = 0.0;
+
+  [[nodiscard]] static double shear_normal_part(double n, double v) noexcept {
+    if (v == 0.0) return n * n;
+    const double a = 1.0 - n * n;
+    return a > 0.0 ? n * n + v * v * v * v / a : inf;
+  }
+  [[nodiscard]] double objective(double n, double v) const noexcept {
+    if (v < 0.0) return inf;
+    const double dn = n - trial.n, dv = v - trial.v;
+    return 0.5 * (w.n * dn * dn + w.v * dv * dv) + mu * shear_normal_part(n, v);
+  }
+
+  /// argmin over (n, v) of objective: damped Newton from a feasible start (convex problem).
+  void solve_nv(double& n, double& v) const noexcept {
+    for (int it = 0; it < 100; ++it) {
+      const double a = 1.0 - n * n;
+      const double v2 = v * v, v3 = v2 * v, v4 = v2 * v2;
+      const double hn = v == 0.0 ? 2.0 * n : 2.0 * n + 2.0 * n * v4 / (a * a);
+      const double hv = v == 0.0 ? 0.0 : 4.0 * v3 / a;
+      const double hnn = v == 0.0 ? 2.0 : 2.0 + v4 * (2.0 + 6.0 * n * n) / (a * a * a);
+      const double hvv = v == 0.0 ? 0.0 : 12.0 * v2 / a;
+      const double hnv = v == 0.0 ? 0.0 : 8.0 * n * v3 / (a * a);
+      const double gn = w.n * (n - trial.n) + mu * hn;
+      const double gv = w.v * (v - trial.v) + mu * hv;
+      const double Hnn = w.n + mu * hnn, Hvv = w.v + mu * hvv, Hnv = mu * hnv;
+      const double det = Hnn * Hvv - Hnv * Hnv;
+      const double sn = -(Hvv * gn - Hnv * gv) / det;
+      const double sv = -(Hnn * gv - Hnv * gn) / det;
+      if (std::abs(sn) + std::abs(sv) < 1e-15) return;
+      const double f0 = objective(n, v);
+      double step = 1.0;
+      while (step > 1e-20) {
+        const double cn = n + step * sn, cv = v + step * sv;
+        if (objective(cn, cv) <= f0 + 1e-4 * step * (gn * sn + gv * sv)) {
+          n = cn;
+          v = cv;
+          break;
+        }
+        step *= 0.5;
+      }
+      if (step <= 1e-20) return;
+    }
+  }
+
+  /// argmin over m >= 0 of w_m (m - t)²/2 + mu m^1.001: the root of a monotone
+  /// function on [0, t]; safeguarded Newton.
+  [[nodiscard]] double solve_m() const noexcept {
+    const double t = trial.m;
+    if (t == 0.0 || mu == 0.0) return t;
+    const auto g = [&](double m) { return w.m * (m - t) + mu * bending_exponent * std::pow(m, bending_exponent - 1.0); };
+    double lo = 0.0, hi = t, m = 0.5 * t;
+    for (int it = 0; it < 200 && hi - lo > 1e-16 * t; ++it) {
+      const double gm = g(m);
+      if (gm > 0.0) hi = m;
+      else lo = m;
+      const double slope = w.m + mu * bending_exponent * (bending_exponent - 1.0) * std::pow(m, bending_exponent - 2.0);
+      const double next = m - gm / slope;
+      m = (next > lo && next < hi) ? next : 0.5 * (lo + hi);
+    }
+    return m;
+  }
+};
+
+}  // namespace
+
+double damage_envelope(const EnvelopePoint& x) noexcept {
+  return std::pow(std::abs(x.m), bending_exponent) + InnerProblem::shear_normal_part(x.n, std::abs(x.v)) - 1.0;
+}
+
+EnvelopePoint closest_admissible_point(const EnvelopePoint& trial, const ReturnWeights& weights) noexcept {
+  if (damage_envelope(trial) <= 0.0) return trial;
+  // Scale the weights to O(1): only their ratios matter.
+  const double wmax = std::max({weights.n, weights.v, weights.m});
+  InnerProblem p{trial, {weights.n / wmax, weights.v / wmax, weights.m / wmax}, 0.0};
+  double n = 0.0, v = 0.0;  // feasible start; later solves start from the last solution
+  const auto point_at = [&](double mu) {
+    p.mu = mu;
+    p.solve_nv(n, v);
+    return EnvelopePoint{n, v, p.solve_m()};
+  };
+  // x(mu) = argmin ½|x - t|²_w + mu f(x) tends to the trial point as mu -> 0 and
+  // into the surface as mu grows; f(x(mu)) decreases with mu. Bracket, then bisect.
+  double lo = 0.0, hi = 1.0;
+  EnvelopePoint best = point_at(hi);
+  for (int it = 0; it < 200 && damage_envelope(best) > 0.0; ++it) {
+    lo = hi;
+    hi *= 4.0;
+    best = point_at(hi);
+  }
+  for (int it = 0; it < 200; ++it) {
+    const double f = damage_envelope(best);
+    if (f <= 0.0 && f >= -1e-12) break;
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    const EnvelopePoint x = point_at(mid);
+    if (damage_envelope(x) > 0.0) {
+      lo = mid;
+    } else {
+      hi = mid;
+      best = x;
+    }
+  }
+  // The bisection leaves (n, v) warm-started at the last mid; `best` is admissible.
+  best.n = std::copysign(best.n, trial.n);  // a point on n = 0 keeps the trial's side
+  return best;
+}
+
+}  // namespace dfc::dem

@@ -1,0 +1,76 @@
+// Properties of the damage_bond law on a combined cyclic N–V–M path
+// (reference/dem-physics.md §3): after every step the elastic state lies
+// inside the envelope (f <= 0), D never decreases, and D equals the
+// corrected Eq. 2 of its accumulated plastic measures.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "dfc/dem/contact_law_registry.hpp"
+
+namespace dfc::dem {
+namespace {
+
+DamageBondLaw seed001_law() {  // seed 001 Table 1
+  return DamageBondLaw::from_parameters(std::vector<double>{1.7e9, 5.0, 0.5, 0.0, 1.7e9, 5.0, 1.0, 1e6, 50e6, 2e6, 2e-5, 2e-5, 6e-3, 0.0});
+}
+
+TEST(DamageBond, CombinedCyclicPathStaysInsideTheEnvelopeWithMonotoneDamage) {
+  const DamageBondLaw law = seed001_law();
+  std::vector<double> h(DamageBondLaw::history_size, 0.0);
+  set_bond_state(h.data(), BondState::intact);
+  ContactKinematics k;
+  k.normal = {0.0, 0.0, 1.0};
+  k.overlap = -1e-9;
+  k.radius_first = k.radius_second = 1e-3;
+  k.effective_mass = 1e-6;
+  k.dt = 1e-6;
+  const double r = 1e-3, kn = 1.7e9 / (2 * r), ks = kn / 5.0;
+  double previous_damage = 0.0;
+  int yielded = 0;
+  for (int step = 0; step < 3000 && is_bonded(bond_state(h.data())); ++step) {
+    // A rotating mix of opening/closing, shear in x and y, bending and twist.
+    const double phase = 0.01 * step;
+    k.relative_velocity = {0.02 * std::cos(phase), 0.01 * std::sin(2 * phase), 0.015 * std::sin(phase)};
+    k.relative_angular_velocity = {5.0 * std::cos(1.3 * phase), 3.0 * std::sin(0.7 * phase), 4.0};
+    const double before = h[DamageBondLaw::damage];
+    (void)law.evaluate(k, h.data());
+    if (!is_bonded(bond_state(h.data()))) break;
+    const double D = h[DamageBondLaw::damage];
+    if (D > before) ++yielded;
+    EXPECT_GE(D, previous_damage) << "step " << step;
+    previous_damage = D;
+    // D reproduces Eq. 2 (corrected, §3.4) from the stored accumulated measures: same formula, 1 ulp-level.
+    EXPECT_NEAR(D, 1.0 - std::exp(-(h[DamageBondLaw::accumulated_opening] / 2e-5 + h[DamageBondLaw::accumulated_slip] / 2e-5 +
+                                    h[DamageBondLaw::accumulated_bend] / 6e-3)), 1e-14);
+    // f <= 0 at the stored elastic displacements (normalised as in damage_bond_law.hpp).
+    const double en = h[DamageBondLaw::opening] - h[DamageBondLaw::plastic_opening];
+    const Vec3 es = Vec3{h[3], h[4], h[5]} - Vec3{h[11], h[12], h[13]};
+    const Vec3 eb = Vec3{h[7], h[8], h[9]} - Vec3{h[14], h[15], h[16]};
+    const EnvelopePoint x{kn * en / (en >= 0 ? 1e6 : 50e6), ks * norm(es) / 2e6, kn * norm(eb) * r / 1e6};
+    // The return stops at f in [-1e-9, 0]; re-forming the normalised point
+    // from stored displacements adds rounding of ~1e-15.
+    EXPECT_LE(damage_envelope(x), 1e-13) << "step " << step;
+  }
+  EXPECT_GT(yielded, 10);  // the path must actually exercise the return
+}
+
+TEST(DamageBond, LinearContactActsOnlyOnceDamaged) {
+  const DamageBondLaw law = seed001_law();
+  std::vector<double> h(DamageBondLaw::history_size, 0.0);
+  set_bond_state(h.data(), BondState::intact);
+  ContactKinematics k;
+  k.normal = {0.0, 0.0, 1.0};
+  k.overlap = 1e-7;  // overlapping, but the intact bond alone acts (reference §3.6)
+  k.radius_first = k.radius_second = 1e-3;
+  k.dt = 1e-6;
+  const ContactForce f = law.evaluate(k, h.data());
+  EXPECT_EQ(f.on_first.z, 0.0);  // no motion: the bond carries nothing, and no linear force
+  set_bond_state(h.data(), BondState::broken_shear);
+  const ContactForce g = law.evaluate(k, h.data());
+  // Broken: the linear contact k_n = π E* R²/(2R) times the overlap, pushing the first body away.
+  EXPECT_NEAR(g.on_first.z, -M_PI * 1.7e9 * 1e-3 / 2.0 * 1e-7, 1e-12);
+}
+
+}  // namespace
+}  // namespace dfc::dem
