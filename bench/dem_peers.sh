@@ -1,9 +1,9 @@
 #!/bin/bash
 # Peer DEM benchmark: our DEM (dem_throughput --data) against LAMMPS and LIGGGHTS
-# on the same packing (/work/shared/bench/peers, README there), at 1 and 2
+# on the same packing (../shared/bench/peers beside the checkout, README there), at 1 and 2
 # threads / MPI processes; prints particle-steps/s and our ratios.
 #
-#   bench/dem_peers.sh [BUILD_DIR]        (default build-dem; builds dem_throughput)
+#   bench/dem_peers.sh [BUILD_DIR]        (default build; builds dem_throughput)
 # Environment: SIZE=12k|50k (12k), WARMUP (1000), STEPS (2000), PEERS_DIR.
 # Installs the Debian packages lammps liggghts openmpi-bin if missing (needs root).
 # Differences of our run from the peers' (docs/dem_benchmarks.md): no periodic
@@ -11,8 +11,8 @@
 # Not part of the default test run.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-BUILD=${1:-$ROOT/build-dem}
-PEERS=${PEERS_DIR:-/work/shared/bench/peers}
+BUILD=${1:-$ROOT/build}
+PEERS=${PEERS_DIR:-$ROOT/../shared/bench/peers}
 SIZE=${SIZE:-12k}; WARMUP=${WARMUP:-1000}; STEPS=${STEPS:-2000}
 DATA=$PEERS/data/pack_$SIZE.data
 LOGS=$(mktemp -d)
