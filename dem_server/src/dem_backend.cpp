@@ -34,6 +34,11 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   interface_wall_.reset();
   averages_ = nlohmann::json::object();
   if (model_.pile_wall) pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
+  ucs_axis_.reset();
+  if (config_.ucs) {  // build_model adds the configured walls first, in order: same indices
+    const auto& walls = sim().walls();
+    ucs_axis_ = platen_axis(walls[config_.ucs->top_wall].vertices, walls[config_.ucs->bottom_wall].vertices);
+  }
   return {{"dt_suggested", model_.dt},
           {"dt_max", model_.dt_critical},
           {"particles", sim().particles().size()},
@@ -144,6 +149,9 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["wall_" + walls[w].name + "_force_n"] = to_json(inv_n * wall_force_sum[w]);
     averages_["wall_" + walls[w].name + "_moment_nm"] = to_json(inv_n * wall_moment_sum[w]);
   }
+  if (ucs_axis_)
+    averages_["axial_stress_pa"] = axial_stress(*ucs_axis_, inv_n * wall_force_sum[config_.ucs->top_wall],
+                                                inv_n * wall_force_sum[config_.ucs->bottom_wall], config_.ucs->area);
   if (model_.pile_wall) averages_["pile_force_n"] = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
   if (interface_wall_) {
     double power = 0.0;
@@ -177,6 +185,12 @@ nlohmann::json DemBackend::monitors() {
     out["bonds_damaged"] = bonds.damaged;
     out["bonds_broken_tension"] = bonds.broken_tension;
     out["bonds_broken_shear"] = bonds.broken_shear;
+  }
+  if (ucs_axis_) {
+    const Wall& top = s.walls()[config_.ucs->top_wall];
+    const Wall& bottom = s.walls()[config_.ucs->bottom_wall];
+    out["axial_strain"] = axial_strain(*ucs_axis_, platen_separation(*ucs_axis_, top.vertices, bottom.vertices));
+    if (!out.contains("axial_stress_pa")) out["axial_stress_pa"] = axial_stress(*ucs_axis_, top.force, bottom.force, config_.ucs->area);
   }
   if (model_.pile_wall) {
     out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());

@@ -4,10 +4,12 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <set>
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/ucs_platens.hpp"
 
 namespace dfc::dem {
 
@@ -176,6 +178,87 @@ PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact) {
   return pile;
 }
 
+std::size_t find_wall(ConfigReader& cfg, std::string_view key, const std::vector<WallConfig>& walls) {
+  const std::string name = cfg.string(key);
+  for (std::size_t k = 0; k < walls.size(); ++k)
+    if (walls[k].name == name) return k;
+  cfg.fail(key, "no wall is called \"" + name + "\"; name one of the \"walls\"");
+}
+
+/// Cross-section of the sample normal to z: a disc through the outermost
+/// particle of a cylindrical bed, the particles' x–y bounding box of a box bed.
+/// Returns 0 when it cannot be derived (listed spheres, an axis other than z).
+double derived_area(const ParticleConfig& p, const PlatenAxis& axis) {
+  if (p.generator != "lattice" || std::abs(std::abs(axis.axis.z) - 1.0) > 1e-9) return 0.0;
+  const BedRegion& r = p.lattice.region;
+  if (r.shape == BedRegion::Shape::cylinder) {
+    double radius = 0.0;
+    for (const auto& s : p.spheres) radius = std::max(radius, std::hypot(s.centre.x - r.axis_x, s.centre.y - r.axis_y) + s.radius);
+    return std::numbers::pi * radius * radius;
+  }
+  const auto [lo, hi] = bounding_box(p.spheres);
+  return (hi.x - lo.x) * (hi.y - lo.y);
+}
+
+/// Moves both platens along the axis until each touches the outermost particle
+/// surface (support function max/min of c.a ± r), so that loading starts at
+/// once instead of after closing the lattice's margin to the region faces.
+void seat_platens(WallConfig& top, WallConfig& bottom, const std::vector<GeneratedSphere>& spheres, const PlatenAxis& axis) {
+  double high = -inf, low = inf;
+  for (const auto& s : spheres) {
+    high = std::max(high, dot(s.centre, axis.axis) + s.radius);
+    low = std::min(low, dot(s.centre, axis.axis) - s.radius);
+  }
+  const auto shift = [&](WallConfig& wall, double target) {
+    const Vec3 delta = (target - dot(vertex_centroid(wall.mesh.vertices), axis.axis)) * axis.axis;
+    for (auto& v : wall.mesh.vertices) v += delta;
+  };
+  shift(top, high);
+  shift(bottom, low);
+}
+
+UcsConfig read_ucs(ConfigReader cfg, DemConfig& c) {
+  UcsConfig ucs;
+  ucs.top_wall = find_wall(cfg, "top_wall", c.walls);
+  ucs.bottom_wall = find_wall(cfg, "bottom_wall", c.walls);
+  if (ucs.top_wall == ucs.bottom_wall) cfg.fail("bottom_wall", "must differ from top_wall");
+  WallConfig& top = c.walls[ucs.top_wall];
+  WallConfig& bottom = c.walls[ucs.bottom_wall];
+  PlatenAxis axis;
+  try {
+    axis = platen_axis(top.mesh.vertices, bottom.mesh.vertices);
+  } catch (const UserError& e) {
+    cfg.fail("top_wall", e.what());
+  }
+  if (cfg.has("area_m2")) {
+    ucs.area = cfg.positive("area_m2");
+  } else {
+    cfg.accept("area_m2");
+    ucs.area = derived_area(c.particles, axis);
+    if (!(ucs.area > 0.0)) cfg.fail("area_m2", "cannot be derived (listed spheres or platens not normal to z); give the sample cross-section in m2");
+  }
+  ucs.start_step = cfg.integer("start_step", 0, 0);
+  if (cfg.boolean("seat_platens", true)) {
+    seat_platens(top, bottom, c.particles.spheres, axis);
+    axis = platen_axis(top.mesh.vertices, bottom.mesh.vertices);
+  }
+  if (cfg.has("strain_rate_per_s")) {
+    ucs.strain_rate = cfg.positive("strain_rate_per_s");
+    if (norm(top.velocity) > 0.0 || norm(bottom.velocity) > 0.0)
+      cfg.fail("strain_rate_per_s", "the platens already have a velocity_m_s; give either the strain rate or the wall velocities");
+    // Each platen moves half the closing speed dH/dt = -rate H0, so the sample
+    // centre stays put and the platens load it symmetrically.
+    const double speed = 0.5 * *ucs.strain_rate * axis.initial_height;
+    top.velocity = -speed * axis.axis;
+    bottom.velocity = speed * axis.axis;
+    top.start_step = bottom.start_step = ucs.start_step;
+  } else {
+    cfg.accept("strain_rate_per_s");
+  }
+  cfg.finish();
+  return ucs;
+}
+
 TimestepConfig read_timestep(ConfigReader& root) {
   TimestepConfig t;
   auto cfg = root.optional_child("timestep");
@@ -217,6 +300,7 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
     cfg.accept("walls");
   }
   if (auto pile = cfg.optional_child("pile")) c.pile = read_pile(std::move(*pile), c.wall_contact);
+  if (auto ucs = cfg.optional_child("ucs")) c.ucs = read_ucs(std::move(*ucs), c);
   c.threads = int(cfg.integer("threads", 0, 0));
   cfg.finish();
   return c;
@@ -245,6 +329,13 @@ std::string dem_config_help() {
                      start_step, contact} ]
   pile            {"radius_m", "tip_z_m", "length_m", "sides":24, "axis_xy_m":[0,0], "velocity_m_s":[0,0,0],
                    "start_step":0, "contact"}  closed cylinder with a flat tip
+  ucs             {"top_wall", "bottom_wall" (names of two walls), "area_m2" (default: derived from a lattice
+                   bed with platens normal to z: disc through the outermost particle of a cylinder, x-y bounding
+                   box of a box), "seat_platens" (true: move both platens along the axis onto the outermost particles),
+                   "strain_rate_per_s" (optional: moves each platen at rate H0/2 towards the other;
+                   the platens must then have no velocity_m_s), "start_step":0}
+                  adds the monitors axial_stress_pa (platen force / area, compression positive, averaged over
+                  the advance and over both platens) and axial_strain ((H0 - H)/H0, H the platen separation)
   threads         OpenMP threads (0: OpenMP default)
 Contact-law registry:
 )" + describe_contact_laws();

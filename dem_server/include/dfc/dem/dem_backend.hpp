@@ -16,6 +16,8 @@
 //   pile_force_n               force of the particles on the pile along -velocity direction
 //                              (positive = resisting penetration), averaged over the advance
 //   wall_<name>_force_n/_moment_nm  particles on each rigid wall (moment about the origin), averaged
+//   axial_stress_pa, axial_strain   with a "ucs" section only (ucs_platens.hpp): platen stress,
+//                              compression positive, averaged over the advance; strain at its end
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -23,6 +25,7 @@
 
 #include "dfc/dem/dem_config.hpp"
 #include "dfc/dem/model_builder.hpp"
+#include "dfc/dem/ucs_platens.hpp"
 #include "dfc/protocol/solver_backend.hpp"
 
 namespace dfc::dem {
@@ -47,6 +50,7 @@ class DemBackend final : public protocol::SolverBackend {
   DemConfig config_;
   DemModel model_;
   std::optional<std::size_t> interface_wall_;
+  std::optional<PlatenAxis> ucs_axis_;        ///< with a "ucs" section: the platens at configure
   Vec3 pile_reference_;                       ///< m, a pile vertex at configure
   nlohmann::json averages_ = nlohmann::json::object();  ///< advance-averaged monitors of the last advance
 };

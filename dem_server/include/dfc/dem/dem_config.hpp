@@ -38,6 +38,15 @@ struct PileConfig {
   ContactLawSetting contact;
 };
 
+/// Uniaxial compression between two of the walls (docs/dem_ucs.md, ucs_platens.hpp).
+struct UcsConfig {
+  std::size_t top_wall = 0;     ///< index into DemConfig::walls
+  std::size_t bottom_wall = 0;  ///< index into DemConfig::walls
+  double area = 0.0;            ///< m2, sample cross-section (given, or derived from the particles)
+  std::optional<double> strain_rate;  ///< 1/s; when given, the platens were set moving at ±rate H0/2
+  std::int64_t start_step = 0;        ///< first step of the platens' motion when strain_rate is given
+};
+
 struct TimestepConfig {
   double fraction_of_critical = 0.2;
   std::optional<double> dt;  ///< s, fixed step instead of a fraction
@@ -53,6 +62,7 @@ struct DemConfig {
   double skin = 0.0;               ///< m; 0: automatic (0.2 r_max)
   std::vector<WallConfig> walls;
   std::optional<PileConfig> pile;
+  std::optional<UcsConfig> ucs;
   int threads = 0;
 };
 

@@ -1,0 +1,87 @@
+// UCS platens: signs of the stress–strain measures and the "ucs" section.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "dem_test_support.hpp"
+#include "dfc/common/errors.hpp"
+#include "dfc/dem/dem_config.hpp"
+#include "dfc/dem/ucs_platens.hpp"
+#include "dfc/dem/wall_builders.hpp"
+
+namespace dfc::dem {
+namespace {
+
+// Platens 0.02 m apart along +z; the particles push the top up and the bottom
+// down with 10 N each: compression, σ = 10 N / 1e-4 m2 = 1e5 Pa.
+TEST(UcsPlatens, CompressionIsPositiveInStressAndStrain) {
+  const WallMesh top = make_plane_mesh({0, 0, 0.02}, {0, 0, -1}, 0.01);
+  const WallMesh bottom = make_plane_mesh({0, 0, 0}, {0, 0, 1}, 0.01);
+  const PlatenAxis a = platen_axis(top.vertices, bottom.vertices);
+  EXPECT_NEAR(a.axis.z, 1.0, 1e-15);
+  EXPECT_NEAR(a.initial_height, 0.02, 1e-15);
+  EXPECT_NEAR(axial_stress(a, {0, 0, 10}, {0, 0, -10}, 1e-4), 1e5, 1e-9);
+  EXPECT_NEAR(axial_stress(a, {0, 0, -10}, {0, 0, 10}, 1e-4), -1e5, 1e-9);  // tension reads negative
+  // Unequal platen forces (inertia): the mean of the two.
+  EXPECT_NEAR(axial_stress(a, {0, 0, 12}, {0, 0, -8}, 1e-4), 1e5, 1e-9);
+  std::vector<Vec3> moved = top.vertices;
+  for (auto& v : moved) v.z -= 0.0002;
+  EXPECT_NEAR(axial_strain(a, platen_separation(a, moved, bottom.vertices)), 0.01, 1e-12);
+}
+
+nlohmann::json ucs_config() {
+  nlohmann::json c = test::box_bed_config();
+  c["walls"] = nlohmann::json::array({
+      {{"type", "plane"}, {"name", "bottom"}, {"point_m", {0, 0, -0.01}}, {"normal", {0, 0, 1}}},
+      {{"type", "plane"}, {"name", "top"}, {"point_m", {0, 0, 0.5}}, {"normal", {0, 0, -1}}},
+  });
+  c["ucs"] = {{"top_wall", "top"}, {"bottom_wall", "bottom"}, {"strain_rate_per_s", 2.0}};
+  return c;
+}
+
+// Seating puts each platen on the outermost particle surface; the strain rate
+// sets each platen moving at rate H0/2 towards the other, so dH/dt = -rate H0.
+TEST(UcsPlatens, SectionSeatsThePlatensAndDrivesThemAtTheStrainRate) {
+  const DemConfig c = parse_dem_config(ucs_config());
+  ASSERT_TRUE(c.ucs.has_value());
+  double high = -1e9, low = 1e9;
+  for (const auto& s : c.particles.spheres) {
+    high = std::max(high, s.centre.z + s.radius);
+    low = std::min(low, s.centre.z - s.radius);
+  }
+  const WallConfig& top = c.walls[c.ucs->top_wall];
+  const WallConfig& bottom = c.walls[c.ucs->bottom_wall];
+  EXPECT_NEAR(vertex_centroid(top.mesh.vertices).z, high, 1e-12);
+  EXPECT_NEAR(vertex_centroid(bottom.mesh.vertices).z, low, 1e-12);
+  const double h0 = high - low;
+  EXPECT_NEAR(top.velocity.z, -0.5 * 2.0 * h0, 1e-12);
+  EXPECT_NEAR(bottom.velocity.z, 0.5 * 2.0 * h0, 1e-12);
+  EXPECT_NEAR(top.velocity.x, 0.0, 1e-15);
+  EXPECT_GT(c.ucs->area, 0.0);
+}
+
+TEST(UcsPlatens, SectionErrorsNameTheKey) {
+  auto expect_key = [](const nlohmann::json& config, const std::string& key) {
+    try {
+      (void)parse_dem_config(config);
+      ADD_FAILURE() << "no ConfigError for " << key;
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(e.key_path(), key) << e.what();
+    }
+  };
+  nlohmann::json c = ucs_config();
+  c["ucs"]["top_wall"] = "lid";
+  expect_key(c, "ucs.top_wall");
+  c = ucs_config();
+  c["ucs"]["bottom_wall"] = "top";
+  expect_key(c, "ucs.bottom_wall");
+  c = ucs_config();
+  c["walls"][1]["velocity_m_s"] = {0, 0, -0.1};
+  expect_key(c, "ucs.strain_rate_per_s");
+  c = ucs_config();
+  c["particles"] = {{"generator", "list"}, {"density_kg_m3", 2650}, {"spheres", {{0, 0, 0.1, 0.01}}}};
+  expect_key(c, "ucs.area_m2");
+}
+
+}  // namespace
+}  // namespace dfc::dem
