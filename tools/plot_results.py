@@ -13,6 +13,8 @@ the second is what the coupler records: "<slot>_<monitor>" and its own columns):
                                 side dem or continuum, axis x, y, z)
   unbalanced_force.png         unbalanced-force ratios against time, log scale
                                (ufr_<side> | <side>_unbalanced_force_ratio)
+  stress_strain.png            axial stress against axial strain of a platen test (UCS)
+                               (dem_axial_strain, dem_axial_stress_pa), with the peak marked
 A plot whose columns are absent is skipped. The time axis is time_s if present,
 else step, else exchange, else the row number. Prints the path of every file written.
 The file may still be open in a running coupler: it is read without the HDF5
@@ -66,9 +68,11 @@ def read_series(path):
 
 
 def column(series, *names):
-    """Values of the first of `names` present, or None."""
+    """Values of the first of `names` present with any finite value, or None.
+    (The coupler records NaN where a quantity does not apply, e.g. interface
+    forces in a single-participant run.)"""
     for name in names:
-        if name in series:
+        if name in series and np.isfinite(series[name][0]).any():
             return series[name][0]
     return None
 
@@ -160,6 +164,25 @@ def plot_unbalanced(series, out_dir):
     return save(fig, out_dir, "unbalanced_force.png")
 
 
+def plot_stress_strain(series, out_dir):
+    strain = column(series, "axial_strain", "dem_axial_strain")
+    stress = column(series, "axial_stress_pa", "dem_axial_stress_pa")
+    if strain is None or stress is None:
+        return None
+    n = min(len(strain), len(stress))
+    strain, stress = strain[:n], stress[:n]
+    peak = int(np.argmax(stress))
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    ax.plot(strain * 100, stress / 1e3, color="tab:blue")
+    ax.plot([strain[peak] * 100], [stress[peak] / 1e3], "o", color="tab:red", label=f"peak {stress[peak] / 1e3:.1f} kPa")
+    ax.set_xlabel("axial strain [%]")
+    ax.set_ylabel("axial stress [kPa]")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    ax.set_title("Uniaxial compression")
+    return save(fig, out_dir, "stress_strain.png")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description="Plot a dfc results file (HDF5) as PNGs.")
     parser.add_argument("results", help="results file written by the coupler (.h5)")
@@ -175,7 +198,8 @@ def main(argv=None):
     except OSError as error:
         sys.exit(f"plot_results.py: cannot read '{args.results}' as HDF5 ({error})")
 
-    written = [path for path in (plot_pile(series, out_dir), plot_interface(series, out_dir), plot_unbalanced(series, out_dir)) if path]
+    plots = (plot_pile, plot_interface, plot_unbalanced, plot_stress_strain)
+    written = [path for path in (plot(series, out_dir) for plot in plots) if path]
     if not written:
         print(f"plot_results.py: no plottable columns in '{args.results}' (have: {', '.join(sorted(series)) or 'none'})")
     for path in written:
