@@ -26,11 +26,13 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "dfc/common/version.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/model_builder.hpp"
 
@@ -50,6 +52,21 @@ struct Options {
 
 Options parse(int argc, char** argv) {
   Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << "dem_throughput: time the DEM hot loop (particle-steps/s)\n\n"
+                   "  dem_throughput [--side N] [--layers N] [--threads \"1 2\"] [--steps N] [--max-settle N]\n"
+                   "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000]\n\n"
+                   "Without --data: settles a bed of N x N x layers spheres, then times --steps steps per thread count.\n"
+                   "With --data: the peer benchmark on a LAMMPS data file (../shared/bench/peers; see bench/dem_peers.sh).\n";
+      std::exit(0);
+    }
+    if (a == "--version") {
+      std::cout << "dem_throughput " << dfc::project_version() << "\n";
+      std::exit(0);
+    }
+  }
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--side") o.side = std::stoi(v);
