@@ -1,5 +1,6 @@
-// Box generator: a regular lattice of (nx+1)(ny+1)(nz+1) gridpoints.
+// Box generator: a (graded) lattice of (nx+1)(ny+1)(nz+1) gridpoints.
 #include "dfc/common/errors.hpp"
+#include "dfc/fdm/grading.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
 #include "structured_mesh.hpp"
 
@@ -9,16 +10,20 @@ Mesh make_box(const BoxSpec& spec) {
   const auto [nx, ny, nz] = spec.zones;
   if (nx < 1 || ny < 1 || nz < 1) throw UserError("box: every zone count must be >= 1");
   if (!(spec.size.minCoeff() > 0.0)) throw UserError("box: every size must be > 0");
+  for (const double g : spec.grading)
+    if (!(g > 0.0)) throw UserError("box: every grading ratio must be > 0");
 
+  std::array<std::vector<double>, 3> ticks;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const auto axis = Eigen::Index(a);
+    // Both ends exact, so opposite faces are exactly planar.
+    ticks[a] = geometric_spacing(spec.origin[axis], spec.origin[axis] + spec.size[axis], spec.zones[a], spec.grading[a]);
+  }
   Mesh mesh;
   mesh.points.reserve((nx + 1) * (ny + 1) * (nz + 1));
   for (Index k = 0; k <= nz; ++k)
     for (Index j = 0; j <= ny; ++j)
-      for (Index i = 0; i <= nx; ++i) {
-        // Fractions i/n are exact at both ends, so opposite faces are exactly planar.
-        const Vec3 fraction(double(i) / double(nx), double(j) / double(ny), double(k) / double(nz));
-        mesh.points.push_back(spec.origin + spec.size.cwiseProduct(fraction));
-      }
+      for (Index i = 0; i <= nx; ++i) mesh.points.emplace_back(ticks[0][i], ticks[1][j], ticks[2][k]);
 
   const std::array<Index, 3> counts = spec.zones;
   const detail::LatticeNodeIndex node = [nx = nx, ny = ny](Index i, Index j, Index k) { return i + (nx + 1) * (j + (ny + 1) * k); };

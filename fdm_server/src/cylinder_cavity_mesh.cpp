@@ -1,65 +1,68 @@
-// Thick-walled cylinder around a cylindrical cavity: lattice directions
-// (radial, around, vertical), which is right-handed because e_r × e_θ = e_z,
-// so the FLAC3D corner order gives positive tetrahedra.
+// Thick-walled cylinder (or a sector of it) around a cylindrical cavity:
+// lattice directions (radial, around, vertical), which is right-handed because
+// e_r × e_θ = e_z, so the FLAC3D corner order gives positive tetrahedra.
 #include <cmath>
 #include <numbers>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/fdm/grading.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
+#include "dfc/fdm/mesh_quality.hpp"
 #include "structured_mesh.hpp"
 
 namespace dfc::fdm {
 
 std::vector<double> graded_radii(const CylinderCavitySpec& spec) {
-  const Index n = spec.zones_radial;
-  const double ratio = spec.grading_ratio;
-  const double thickness = spec.outer_radius - spec.inner_radius;
-  // Geometric series Δr_k = Δr_0 qᵏ with Σ Δr_k = Ro − Ri; q = 1 is the uniform limit.
-  const bool uniform = std::abs(ratio - 1.0) < 1e-12;
-  const double first = uniform ? thickness / double(n) : thickness * (ratio - 1.0) / (std::pow(ratio, double(n)) - 1.0);
-  std::vector<double> radii;
-  radii.reserve(n + 1);
-  radii.push_back(spec.inner_radius);
-  double step = first;
-  for (Index k = 1; k < n; ++k) {
-    radii.push_back(radii.back() + step);
-    step *= ratio;
-  }
-  radii.push_back(spec.outer_radius);  // exact, not accumulated
-  return radii;
+  return geometric_spacing(spec.inner_radius, spec.outer_radius, spec.zones_radial, spec.grading_ratio);
 }
 
 Mesh make_cylinder_cavity(const CylinderCavitySpec& spec) {
   if (!(spec.inner_radius > 0.0) || !(spec.outer_radius > spec.inner_radius))
     throw UserError("cylinder_cavity: need 0 < inner_radius < outer_radius");
   if (!(spec.height > 0.0)) throw UserError("cylinder_cavity: height must be > 0");
-  if (spec.zones_radial < 1 || spec.zones_around < 3 || spec.zones_vertical < 1)
-    throw UserError("cylinder_cavity: need zones_radial >= 1, zones_around >= 3, zones_vertical >= 1");
+  if (!(spec.angle_deg > 0.0 && spec.angle_deg <= 360.0)) throw UserError("cylinder_cavity: angle_deg must be in (0, 360]");
+  const bool full_circle = spec.angle_deg == 360.0;
+  if (spec.zones_radial < 1 || spec.zones_around < (full_circle ? 3u : 1u) || spec.zones_vertical < 1)
+    throw UserError("cylinder_cavity: need zones_radial >= 1, zones_around >= 3 (>= 1 for a sector), zones_vertical >= 1");
   if (!(spec.grading_ratio > 0.0)) throw UserError("cylinder_cavity: grading_ratio must be > 0");
 
   const Index nr = spec.zones_radial;
   const Index nt = spec.zones_around;
   const Index nz = spec.zones_vertical;
+  const Index rings_around = full_circle ? nt : nt + 1;  // a full circle does not repeat θ = 360°
   const std::vector<double> radii = graded_radii(spec);
+  const double angle = spec.angle_deg * std::numbers::pi / 180.0;
 
   Mesh mesh;
-  mesh.points.reserve((nr + 1) * nt * (nz + 1));
+  mesh.points.reserve((nr + 1) * rings_around * (nz + 1));
   for (Index k = 0; k <= nz; ++k) {
     const double z = spec.z_bottom + spec.height * double(k) / double(nz);
-    for (Index j = 0; j < nt; ++j) {
-      const double angle = 2.0 * std::numbers::pi * double(j) / double(nt);
-      for (Index i = 0; i <= nr; ++i) mesh.points.emplace_back(radii[i] * std::cos(angle), radii[i] * std::sin(angle), z);
+    for (Index j = 0; j < rings_around; ++j) {
+      const double theta = angle * double(j) / double(nt);
+      // Exact zeros on the coordinate planes (θ = 90°, 180°, …), so that a
+      // sector side there is exactly axis-aligned and takes a roller.
+      const auto snap = [](double v) { return std::abs(v) < 1e-14 ? 0.0 : v; };
+      const double c = snap(std::cos(theta));
+      const double s = snap(std::sin(theta));
+      for (Index i = 0; i <= nr; ++i) mesh.points.emplace_back(radii[i] * c, radii[i] * s, z);
     }
   }
 
   const std::array<Index, 3> counts = {nr, nt, nz};
-  // j wraps: lattice node j = nt is gridpoint j = 0, so the 0/360° seam has no duplicates.
-  const detail::LatticeNodeIndex node = [nr, nt](Index i, Index j, Index k) { return i + (nr + 1) * ((j % nt) + nt * k); };
+  // Full circle: j wraps (lattice node j = nt is gridpoint j = 0), so the seam has no duplicates.
+  const detail::LatticeNodeIndex node = [nr, rings_around](Index i, Index j, Index k) {
+    return i + (nr + 1) * ((j % rings_around) + rings_around * k);
+  };
   detail::add_lattice_zones(mesh, counts, node);
   detail::add_lattice_face_group(mesh, "inner", counts, node, 0, 0);
   detail::add_lattice_face_group(mesh, "outer", counts, node, 0, 1);
   detail::add_lattice_face_group(mesh, "bottom", counts, node, 2, 0);
   detail::add_lattice_face_group(mesh, "top", counts, node, 2, 1);
+  if (!full_circle) {
+    detail::add_lattice_face_group(mesh, "theta_min", counts, node, 1, 0);
+    detail::add_lattice_face_group(mesh, "theta_max", counts, node, 1, 1);
+  }
+  check_aspect_ratios(mesh, spec.max_aspect_ratio, "cylinder_cavity mesh");
   return mesh;
 }
 

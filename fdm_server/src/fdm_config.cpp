@@ -8,6 +8,7 @@
 #include "dfc/fdm/initial_stress.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
 #include "dfc/fdm/model_registry.hpp"
+#include "dfc/fdm/named_materials.hpp"
 
 namespace dfc::fdm {
 
@@ -45,6 +46,12 @@ Mesh read_box(ConfigReader& cfg) {
   spec.origin = to_vec3(cfg.vec3("origin_m", {0.0, 0.0, 0.0}));
   spec.size = read_positive_vec3(cfg, "size_m");
   spec.zones = read_zone_counts(cfg, "zones");
+  if (cfg.has("grading")) {
+    const auto grading = cfg.vec3("grading");
+    for (const double g : grading)
+      if (!(g > 0.0)) cfg.fail("grading", "expected 3 positive ratios [gx, gy, gz] (spacing growth per zone along +x, +y, +z)");
+    spec.grading = grading;
+  }
   check_zone_total(cfg, "zones", double(spec.zones[0]) * double(spec.zones[1]) * double(spec.zones[2]));
   return make_box(spec);
 }
@@ -57,21 +64,49 @@ Mesh read_cylinder_cavity(ConfigReader& cfg) {
   spec.z_bottom = cfg.number("z_bottom_m", 0.0);
   spec.height = cfg.positive("height_m");
   spec.zones_radial = Index(cfg.integer("zones_radial", 1));
-  spec.zones_around = Index(cfg.integer("zones_around", 3));
+  spec.zones_around = Index(cfg.integer("zones_around", 1));
   spec.zones_vertical = Index(cfg.integer("zones_vertical", 1));
   spec.grading_ratio = cfg.positive("grading_ratio", 1.0);
+  spec.angle_deg = cfg.number("angle_deg", 360.0, Bounds{0.0, 360.0, true});
+  if (spec.angle_deg == 360.0 && spec.zones_around < 3) cfg.fail("zones_around", "the full circle needs zones_around >= 3");
+  spec.max_aspect_ratio = cfg.number("max_aspect_ratio", kDefaultMaxAspectRatio, Bounds{1.0});
   check_zone_total(cfg, "zones_radial", double(spec.zones_radial) * double(spec.zones_around) * double(spec.zones_vertical));
-  return make_cylinder_cavity(spec);
+  try {
+    return make_cylinder_cavity(spec);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const UserError& e) {
+    cfg.fail("max_aspect_ratio", e.what());
+  }
+}
+
+Mesh read_sphere_cavity_octant(ConfigReader& cfg) {
+  SphereCavityOctantSpec spec;
+  spec.inner_radius = cfg.positive("inner_radius_m");
+  spec.outer_radius = cfg.positive("outer_radius_m");
+  if (!(spec.outer_radius > spec.inner_radius)) cfg.fail("outer_radius_m", "must be larger than inner_radius_m");
+  spec.zones_radial = Index(cfg.integer("zones_radial", 1));
+  spec.zones_around = Index(cfg.integer("zones_around", 1));
+  spec.grading_ratio = cfg.positive("grading_ratio", 1.0);
+  spec.max_aspect_ratio = cfg.number("max_aspect_ratio", kDefaultMaxAspectRatio, Bounds{1.0});
+  check_zone_total(cfg, "zones_radial", 3.0 * double(spec.zones_radial) * double(spec.zones_around) * double(spec.zones_around));
+  try {
+    return make_sphere_cavity_octant(spec);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const UserError& e) {
+    cfg.fail("max_aspect_ratio", e.what());
+  }
 }
 
 Mesh read_mesh(ConfigReader cfg) {
-  const std::string type = cfg.choice("type", {"box", "cylinder_cavity"});
-  Mesh mesh = type == "box" ? read_box(cfg) : read_cylinder_cavity(cfg);
+  const std::string type = cfg.choice("type", {"box", "cylinder_cavity", "sphere_cavity_octant"});
+  Mesh mesh = type == "box" ? read_box(cfg) : (type == "cylinder_cavity" ? read_cylinder_cavity(cfg) : read_sphere_cavity_octant(cfg));
   cfg.finish();
   return mesh;
 }
 
-Material read_material(ConfigReader cfg) {
+Material read_model_and_parameters(ConfigReader cfg) {
   const std::string keyword = cfg.string("model");
   const ConstitutiveModelEntry* entry = find_constitutive_model(keyword);
   if (entry == nullptr) {
@@ -81,9 +116,32 @@ Material read_material(ConfigReader cfg) {
   }
   Material material;
   material.density = cfg.positive("density_kg_m3");
-  material.model = entry->create(cfg);
+  try {
+    material.model = entry->create(cfg);
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const UserError& e) {
+    cfg.fail("model", e.what());
+  }
   cfg.finish();
   return material;
+}
+
+// "preset": a named material (named_materials.hpp) whose values the other keys
+// of the object override; the expanded object is then read as usual, so
+// errors still name "material.<key>".
+Material read_material(const nlohmann::json& given) {
+  if (!given.is_object() || !given.contains("preset")) return read_model_and_parameters(ConfigReader(given, "material"));
+  ConfigReader cfg(given, "material");
+  const std::string name = cfg.string("preset");
+  const NamedMaterial* preset = find_named_material(name);
+  if (preset == nullptr) {
+    std::string known;
+    for (const auto& m : named_materials()) known += (known.empty() ? "\"" : ", \"") + std::string(m.name) + "\"";
+    cfg.fail("preset", "unknown named material \"" + name + "\"; known: " + known);
+  }
+  const nlohmann::json expanded = expand_named_material(*preset, given);
+  return read_model_and_parameters(ConfigReader(expanded, "material"));
 }
 
 SolverSettings read_settings(ConfigReader& root) {
@@ -149,7 +207,7 @@ CouplingSettings read_coupling(ConfigReader cfg, const Mesh& mesh) {
 FdmModel load_fdm_model(const nlohmann::json& section) {
   ConfigReader root(section, "");
   Mesh mesh = read_mesh(root.child("mesh"));
-  Material material = read_material(root.child("material"));
+  Material material = read_material(root.raw("material"));
   const SolverSettings settings = read_settings(root);
 
   std::optional<Solver> solver;

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "dfc/common/errors.hpp"
-#include "dfc/fdm/hex_overlays.hpp"
 
 namespace dfc::fdm {
 
@@ -64,22 +63,6 @@ Vec3 quad_area_vector(const Mesh& mesh, const FaceQuad& face) {
   const Vec3 d13 = mesh.points[face[2]] - mesh.points[face[0]];
   const Vec3 d24 = mesh.points[face[3]] - mesh.points[face[1]];
   return 0.5 * d13.cross(d24);
-}
-
-void check_mesh_quality(const Mesh& mesh) {
-  constexpr std::size_t kListed = 10;
-  std::vector<Index> bad_zones;
-  for (Index zone = 0; zone < mesh.zone_count(); ++zone) {
-    const auto tets = zone_tetrahedra(mesh, zone);
-    if (std::any_of(tets.begin(), tets.end(), [](const Tetrahedron& t) { return !(t.volume > 0.0); })) bad_zones.push_back(zone);
-  }
-  if (bad_zones.empty()) return;
-  std::string list;
-  for (std::size_t i = 0; i < std::min(kListed, bad_zones.size()); ++i) list += (i ? ", " : "") + std::to_string(bad_zones[i]);
-  if (bad_zones.size() > kListed) list += " and " + std::to_string(bad_zones.size() - kListed) + " more";
-  throw UserError("the mesh has " + std::to_string(bad_zones.size()) +
-                  " zone(s) with a non-positive tetrahedron volume (inverted or badly distorted hexahedra, or corners "
-                  "not in FLAC3D order): zones " + list + "; fix the mesh geometry or grading");
 }
 
 }  // namespace dfc::fdm

@@ -4,15 +4,19 @@
 #include <array>
 
 #include "dfc/fdm/elastic_model.hpp"
+#include "dfc/fdm/mohr_coulomb_model.hpp"
+#include "dfc/fdm/structured_cam_clay_model.hpp"
 
 namespace dfc::fdm {
 
 namespace {
 
-// The one table of constitutive models. mohr_coulomb and structured_cam_clay
-// (DESIGN §6) will be rows here, with per-tetrahedron state.
-const std::array<ConstitutiveModelEntry, 1> kModels = {{
+// The one table of constitutive models (DESIGN §6).
+const std::array<ConstitutiveModelEntry, 3> kModels = {{
     {ElasticModel::kKeyword, ElasticModel::kSummary, ElasticModel::kParameters, &ElasticModel::from_config},
+    {MohrCoulombModel::kKeyword, MohrCoulombModel::kSummary, MohrCoulombModel::kParameters, &MohrCoulombModel::from_config},
+    {StructuredCamClayModel::kKeyword, StructuredCamClayModel::kSummary, StructuredCamClayModel::kParameters,
+     &StructuredCamClayModel::from_config},
 }};
 
 }  // namespace

@@ -129,6 +129,16 @@ void Solver::set_initial_stress(const std::function<Stress(const Vec3& zone_cent
 
 void Solver::set_external_force(Index gp, const Vec3& force) { external_force_.at(gp) = force; }
 
+void Solver::reset_kinematics() {
+  std::fill(velocity_.begin(), velocity_.end(), Vec3::Zero());
+  std::fill(displacement_.begin(), displacement_.end(), Vec3::Zero());
+}
+
+std::span<const double> Solver::tetrahedron_state(Index tet) const {
+  const std::size_t state_size = material_.model->state_size();
+  return std::span<const double>(model_state_).subspan(tet * state_size, state_size);
+}
+
 void Solver::set_extra_mass(Index gp, double mass) {
   extra_mass_.at(gp) = mass;
   inertial_mass_stale_ = true;
@@ -258,6 +268,7 @@ void Solver::zone_pass(double dt) {
   const auto n_zones = std::ptrdiff_t(mesh_.zone_count());
   const std::size_t state_size = material_.model->state_size();
   const ConstitutiveModel& model = *material_.model;
+  const bool average_mean_stress = model.needs_mean_stress_averaging();
 #pragma omp parallel for num_threads(thread_count()) schedule(static) if (n_zones >= kMinParallelItems)
   for (std::ptrdiff_t z = 0; z < n_zones; ++z) {
     const Index first = Index(z) * kTetrahedraPerZone;
@@ -268,11 +279,15 @@ void Solver::zone_pass(double dt) {
       volumes[t] = tetrahedra_[first + t].volume;
     }
     apply_mixed_discretization(rates, volumes);  // §1.5
+    std::array<double, kTetrahedraPerZone> old_means{};
     for (Index t = 0; t < kTetrahedraPerZone; ++t) {
       const Index tet = first + t;
+      old_means[t] = stress_[tet].trace() / 3.0;
       model.update(StrainIncrement{rates[t] * dt}, stress_[tet], StateSpan(model_state_).subspan(tet * state_size, state_size));  // §1.6
-      compute_tetrahedron_forces(tet);
     }
+    const std::span<Stress> zone_stresses(stress_.data() + first, kTetrahedraPerZone);
+    if (average_mean_stress) apply_mean_stress_mixed_discretization(zone_stresses, old_means, volumes);  // §1.5, stress pass
+    for (Index t = 0; t < kTetrahedraPerZone; ++t) compute_tetrahedron_forces(first + t);
   }
 }
 

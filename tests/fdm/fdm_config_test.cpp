@@ -3,6 +3,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/fdm/fdm_config.hpp"
+#include "dfc/fdm/structured_cam_clay_model.hpp"
 
 namespace dfc::fdm {
 namespace {
@@ -110,8 +111,65 @@ TEST(FdmConfig, RollerOnCylinderWallIsRadialAndAccepted) {
 TEST(FdmConfig, HelpListsModelsWithParametersAndUnits) {
   const std::string help = fdm_config_help();
   for (const char* expected : {"\"elastic\"", "young_modulus_pa [Pa]", "poisson_ratio [-]", "bulk_modulus_pa [Pa]", "shear_modulus_pa [Pa]",
-                               "cylinder_cavity", "grading_ratio", "mass_scaling", "initial_stress", "coupling"})
+                               "cylinder_cavity", "grading_ratio", "mass_scaling", "initial_stress", "coupling", "\"mohr_coulomb\"",
+                               "cohesion_pa [Pa]", "friction_angle_deg [deg]", "dilation_angle_deg [deg]", "tensile_strength_pa [Pa]",
+                               "\"structured_cam_clay\"", "ps0_pa [Pa]", "pt0_pa [Pa]", "mf [-]", "mg [-]", "rho_s [-]", "rho_t [-]",
+                               "xi_s [-]", "xi_t [-]", "\"chalk_snw\"", "sphere_cavity_octant", "angle_deg", "max_aspect_ratio", "preset"})
     EXPECT_NE(help.find(expected), std::string::npos) << expected;
+}
+
+TEST(FdmConfig, ChalkPresetIsSeedTable2AndKeysNextToItOverride) {
+  nlohmann::json section = valid_section();
+  section["material"] = {{"preset", "chalk_snw"}, {"density_kg_m3", 1900.0}};
+  const FdmModel model = load_fdm_model(section);
+  const auto* cam_clay = dynamic_cast<const StructuredCamClayModel*>(&model.solver.model());
+  ASSERT_NE(cam_clay, nullptr);
+  const StructuredCamClayParameters& m = cam_clay->parameters();
+  EXPECT_DOUBLE_EQ(m.ps0, 3.0e6);
+  EXPECT_DOUBLE_EQ(m.pt0, 2.0e5);
+  EXPECT_DOUBLE_EQ(m.mf, 1.0);
+  EXPECT_DOUBLE_EQ(m.mg, 1.2);
+  EXPECT_DOUBLE_EQ(m.rho_s, 19.0);
+  EXPECT_DOUBLE_EQ(m.rho_t, 15.0);
+  EXPECT_DOUBLE_EQ(m.xi_s, 0.5);
+  EXPECT_DOUBLE_EQ(m.xi_t, 0.5);
+  EXPECT_NEAR(9.0 * m.moduli.bulk * m.moduli.shear / (3.0 * m.moduli.bulk + m.moduli.shear), 1.0e9, 1e-3);  // E = 1 GPa
+  EXPECT_DOUBLE_EQ(model.solver.density(), 1900.0);  // the override
+  section["material"] = {{"preset", "chalk_snv"}};
+  EXPECT_EQ(key_path_of_error(section), "material.preset");
+  section["material"] = {{"preset", "chalk_snw"}, {"rho_tt", 3.0}};
+  EXPECT_EQ(key_path_of_error(section), "material.rho_tt");
+}
+
+TEST(FdmConfig, PlasticModelParametersAreValidatedWithTheirKeyPaths) {
+  nlohmann::json section = valid_section();
+  section["material"] = nlohmann::json::parse(R"({"model": "mohr_coulomb", "density_kg_m3": 2000, "young_modulus_pa": 1e8,
+      "poisson_ratio": 0.25, "cohesion_pa": 1e4, "friction_angle_deg": 30, "dilation_angle_deg": 10, "tensile_strength_pa": 0})");
+  EXPECT_NO_THROW((void)load_fdm_model(section));
+  section["material"]["dilation_angle_deg"] = 35;
+  EXPECT_EQ(key_path_of_error(section), "material.dilation_angle_deg");
+  section["material"]["dilation_angle_deg"] = 0;
+  section["material"].erase("tensile_strength_pa");
+  EXPECT_EQ(key_path_of_error(section), "material.tensile_strength_pa");
+  section["material"] = {{"preset", "chalk_snw"}, {"mf", -1.0}};
+  EXPECT_EQ(key_path_of_error(section), "material.mf");
+}
+
+TEST(FdmConfig, SectorAndSphereOctantMeshesAreAccepted) {
+  nlohmann::json section = valid_section();
+  section["initial_stress"] = nullptr;
+  section["gravity_m_s2"] = {0.0, 0.0, 0.0};
+  section["mesh"] = nlohmann::json::parse(R"({"type": "cylinder_cavity", "inner_radius_m": 1, "outer_radius_m": 2, "height_m": 0.2,
+      "zones_radial": 4, "zones_around": 6, "zones_vertical": 1, "angle_deg": 90})");
+  section["boundaries"] = nlohmann::json::parse(R"([{"group": "theta_min", "condition": "roller"}, {"group": "theta_max", "condition": "roller"}])");
+  section["coupling"]["group"] = "inner";
+  EXPECT_NO_THROW((void)load_fdm_model(section));
+  section["mesh"] = nlohmann::json::parse(R"({"type": "sphere_cavity_octant", "inner_radius_m": 1, "outer_radius_m": 2,
+      "zones_radial": 4, "zones_around": 3})");
+  section["boundaries"] = nlohmann::json::parse(R"([{"group": "xmin", "condition": "roller"}, {"group": "zmin", "condition": "roller"}])");
+  EXPECT_NO_THROW((void)load_fdm_model(section));
+  section["mesh"]["grading_ratio"] = 3.0;  // innermost zones: Δr = 0.025 m against 0.26 m around
+  EXPECT_EQ(key_path_of_error(section), "mesh.max_aspect_ratio");
 }
 
 }  // namespace

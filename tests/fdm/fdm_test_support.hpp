@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "dfc/fdm/elastic_model.hpp"
+#include "dfc/fdm/equilibrium.hpp"
 #include "dfc/fdm/solver.hpp"
 
 namespace dfc::fdm::test {
@@ -14,12 +15,7 @@ inline Material elastic_material(double young_modulus, double poisson_ratio, dou
 /// Steps until the unbalanced-force ratio drops below `target` (after a few
 /// steps, so that a load has been felt). Returns the steps taken, or -1.
 inline int run_to_equilibrium(Solver& solver, double dt, double target, int max_steps) {
-  constexpr int kMinimumSteps = 10;
-  for (int step = 1; step <= max_steps; ++step) {
-    solver.step(dt);
-    if (step >= kMinimumSteps && solver.unbalanced_force_ratio() < target) return step;
-  }
-  return -1;
+  return step_to_equilibrium(solver, EquilibriumSettings{dt, target, 10, max_steps});
 }
 
 inline SolverSettings quiet_settings(Vec3 gravity = Vec3::Zero()) {

@@ -45,6 +45,16 @@ class ConstitutiveModel {
   /// The stiffest elastic moduli the model can reach: the timestep and the
   /// scaled masses are computed from them (§1.10).
   [[nodiscard]] virtual ElasticModuli stiffest_moduli() const = 0;
+  /// True for models whose plastic flow changes the mean stress (plastic
+  /// volume change, tension cut-off). The solver then applies mixed
+  /// discretization to the stress as well (§1.5, last paragraph; the Itasca SDK
+  /// `State::pore_pressure_increment_`): after the update, each tetrahedron's
+  /// mean-stress increment is replaced by the zone's volume average. For a
+  /// linear elastic law the increments are already equal after the strain-rate
+  /// averaging, so the pass is skipped (false) to keep the elastic path fast.
+  [[nodiscard]] virtual bool needs_mean_stress_averaging() const { return false; }
+  /// Names of the history doubles (state_size() of them), for output and tests.
+  [[nodiscard]] virtual std::span<const std::string_view> state_names() const { return {}; }
 };
 
 }  // namespace dfc::fdm

@@ -3,11 +3,15 @@
 //
 // {
 //   "mesh": {"type": "box", "origin_m": [x,y,z] (default [0,0,0]), "size_m": [Lx,Ly,Lz] (> 0),
-//            "zones": [nx,ny,nz] (integers >= 1)}
+//            "zones": [nx,ny,nz] (integers >= 1), "grading": [gx,gy,gz] (default [1,1,1])}
 //        or {"type": "cylinder_cavity", "inner_radius_m": Ri, "outer_radius_m": Ro (> Ri),
-//            "z_bottom_m": 0, "height_m": H, "zones_radial": nr, "zones_around": nθ (>= 3, full 360°),
-//            "zones_vertical": nz, "grading_ratio": 1 (Δr_{k+1}/Δr_k outwards; > 1 = finer at the cavity)},
-//   "material": {"model": "elastic", "density_kg_m3": ρ, <the model's parameters>},
+//            "z_bottom_m": 0, "height_m": H, "zones_radial": nr, "zones_around": nθ (>= 3 for 360°),
+//            "zones_vertical": nz, "grading_ratio": 1 (Δr_{k+1}/Δr_k outwards; > 1 = finer at the cavity),
+//            "angle_deg": 360 (a sector adds groups theta_min/theta_max), "max_aspect_ratio": 10}
+//        or {"type": "sphere_cavity_octant", "inner_radius_m", "outer_radius_m", "zones_radial",
+//            "zones_around", "grading_ratio", "max_aspect_ratio"},
+//   "material": {"model": "elastic" | "mohr_coulomb" | "structured_cam_clay", "density_kg_m3": ρ,
+//                <the model's parameters>}  or  {"preset": "chalk_snw", <overrides>},
 //   "gravity_m_s2": [0,0,0]          total acceleration vector (the coupler injects N·g here),
 //   "damping": {"local": 0.8}         local damping α in [0,1) (§1.9),
 //   "mass_scaling": true              scale inertial masses so any Δt is stable (§1.10),

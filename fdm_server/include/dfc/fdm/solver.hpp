@@ -9,7 +9,10 @@
 //      v += Δt F/m (§1.8); boundary conditions; u += Δt v;
 //   2. zone pass: strain rate from the new velocities (§1.4), mixed
 //      discretization (§1.5), Δε = ξΔt, constitutive update per tetrahedron
-//      (§1.6), tetrahedron nodal forces for the next step (§1.7).
+//      (§1.6), for models with plastic volume change the stress pass of mixed
+//      discretization (zone-averaged mean-stress increment, §1.5 last
+//      paragraph; docs/fdm_models.md §2 #9), tetrahedron nodal forces for the
+//      next step (§1.7).
 // Running the zone pass last keeps stress, forces and displacements at the same
 // time level between steps (what a coupled partner reads); the cycle is that of
 // §1.1 started at step 5.
@@ -65,6 +68,10 @@ class Solver {
   void set_extra_mass(Index gp, double mass);
   /// Holds the velocity of `gp` at `velocity` (all components) from the next step on.
   void prescribe_velocity(Index gp, const Vec3& velocity);
+  /// Zeroes all gridpoint velocities and displacements, keeping stresses and
+  /// model history (FLAC's "initialize displacement 0" after an equilibrium
+  /// stage, so that later displacements are those of the next stage).
+  void reset_kinematics();
 
   // Stepping ----------------------------------------------------------------
   /// Largest stable Δt with real masses, Δt_crit/2 of §1.10.
@@ -82,6 +89,8 @@ class Solver {
   [[nodiscard]] std::span<const Vec3> velocities() const { return velocity_; }
   [[nodiscard]] std::span<const Vec3> displacements() const { return displacement_; }
   [[nodiscard]] std::span<const Stress> tetrahedron_stresses() const { return stress_; }
+  /// The constitutive model's history of tetrahedron `tet` (model().state_names() order).
+  [[nodiscard]] std::span<const double> tetrahedron_state(Index tet) const;
   /// Volume average of the zone's 10 tetrahedron stresses (§1.6).
   [[nodiscard]] Stress zone_stress(Index zone) const;
   /// Force this body exerts on gridpoint `gp` in its current state: tetrahedron

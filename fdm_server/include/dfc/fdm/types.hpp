@@ -3,6 +3,7 @@
 // symmetric tensors used for stress and strain (tension/extension positive,
 // the FLAC convention of fdm-physics.md "Sign convention").
 #include <array>
+#include <cmath>
 #include <cstddef>
 
 #include <Eigen/Core>
@@ -35,6 +36,16 @@ struct SymTensor {
     return {xx * a.x() + xy * a.y() + zx * a.z(), xy * a.x() + yy * a.y() + yz * a.z(), zx * a.x() + yz * a.y() + zz * a.z()};
   }
   [[nodiscard]] std::array<double, 6> components() const { return {xx, yy, zz, xy, yz, zx}; }
+  /// The full 3×3 matrix.
+  [[nodiscard]] Eigen::Matrix3d matrix() const {
+    Eigen::Matrix3d m;
+    m << xx, xy, zx, xy, yy, yz, zx, yz, zz;
+    return m;
+  }
+  /// Frobenius norm √(a_ij a_ij), shear components counted twice.
+  [[nodiscard]] double norm() const { return std::sqrt(xx * xx + yy * yy + zz * zz + 2.0 * (xy * xy + yz * yz + zx * zx)); }
+  /// The normal component n·σ·n along a unit vector n.
+  [[nodiscard]] double normal_component(const Vec3& n) const { return n.dot(apply(n)); }
 
   SymTensor& operator+=(const SymTensor& o) {
     xx += o.xx, yy += o.yy, zz += o.zz, xy += o.xy, yz += o.yz, zx += o.zx;
@@ -44,7 +55,12 @@ struct SymTensor {
     xx *= s, yy *= s, zz *= s, xy *= s, yz *= s, zx *= s;
     return *this;
   }
+  SymTensor& operator-=(const SymTensor& o) {
+    xx -= o.xx, yy -= o.yy, zz -= o.zz, xy -= o.xy, yz -= o.yz, zx -= o.zx;
+    return *this;
+  }
   [[nodiscard]] friend SymTensor operator+(SymTensor a, const SymTensor& b) { return a += b; }
+  [[nodiscard]] friend SymTensor operator-(SymTensor a, const SymTensor& b) { return a -= b; }
   [[nodiscard]] friend SymTensor operator*(SymTensor a, double s) { return a *= s; }
   [[nodiscard]] friend SymTensor operator*(double s, SymTensor a) { return a *= s; }
 };

@@ -1,0 +1,59 @@
+#pragma once
+// Structured (bonded) Modified Cam Clay for soft rocks (seed 001 §2.2, Table 2;
+// Monforte et al. 2019; fdm-physics.md §3): an MCC ellipse translated into
+// tension by the bonding p_t, sized by p_c = p_s + (1+k) p_t, with a separate
+// plastic-potential slope M_g, volumetric/deviatoric hardening of p_s and
+// debonding of p_t. The kernels and the choices made where the sources are
+// unconfirmed are in cam_clay_return.hpp (and docs/fdm_models.md).
+#include <array>
+#include <memory>
+
+#include "dfc/fdm/cam_clay_return.hpp"
+#include "dfc/fdm/elastic_model.hpp"
+
+namespace dfc::fdm {
+
+class StructuredCamClayModel final : public ConstitutiveModel {
+ public:
+  static constexpr std::string_view kKeyword = "structured_cam_clay";
+  static constexpr std::string_view kSummary =
+      "bonded Modified Cam Clay (seed 001: p_s, p_t, M_f yield, M_g potential, hardening/debonding rho, xi); linear elasticity";
+  static constexpr std::array<ModelParameter, 9> kPlasticParameters = {{
+      {"ps0_pa", "Pa", "initial p_s, preconsolidation of the unbonded material, > 0 (raised to the initial stress if that lies outside)"},
+      {"pt0_pa", "Pa", "initial p_t, bonding (isotropic tensile strength), >= 0"},
+      {"mf", "-", "M_f, slope controlling the yield-surface shape, > 0"},
+      {"mg", "-", "M_g, slope of the plastic potential, > 0; default mf (associated flow)"},
+      {"rho_s", "-", "rho_s, rate of p_s hardening: dp_s = rho_s p_s (d eps_v^p + xi_s d eps_q^p); default 0"},
+      {"rho_t", "-", "rho_t, rate of debonding: dp_t = -rho_t p_t (|d eps_v^p| + xi_t d eps_q^p); default 0"},
+      {"xi_s", "-", "xi_s, weight of deviatoric plastic strain in the p_s law; default 0"},
+      {"xi_t", "-", "xi_t, weight of deviatoric plastic strain in the p_t law; default 0"},
+      {"k", "-", "k of p_c = p_s + (1+k) p_t (Kratos KSIM; not in seed 001 Table 2), >= 0; default 0"},
+  }};
+  static constexpr auto kParameters = join_parameters(kElasticParameters, kPlasticParameters);
+  /// History per tetrahedron (state_names order).
+  enum StateIndex : std::size_t { kPs = 0, kPt = 1, kPlasticVolumetricStrain = 2, kPlasticDeviatoricStrain = 3, kStateSize = 4 };
+
+  explicit StructuredCamClayModel(const StructuredCamClayParameters& parameters);
+  [[nodiscard]] static std::unique_ptr<ConstitutiveModel> from_config(ConfigReader& material);
+
+  [[nodiscard]] std::string_view keyword() const override { return kKeyword; }
+  [[nodiscard]] std::size_t state_size() const override { return kStateSize; }
+  [[nodiscard]] std::span<const std::string_view> state_names() const override;
+  /// p_s = ps0, p_t = pt0; if the initial stress lies outside that surface,
+  /// p_s is raised to put it on the surface (normally consolidated), as a
+  /// geostatic stress at N·g may exceed the laboratory p_s0.
+  void initialize_state(const Stress& initial_stress, StateSpan state) const override;
+  void update(const StrainIncrement& increment, Stress& stress, StateSpan state) const override;
+  [[nodiscard]] ElasticModuli stiffest_moduli() const override { return parameters_.moduli; }
+  [[nodiscard]] bool needs_mean_stress_averaging() const override { return true; }
+  [[nodiscard]] const StructuredCamClayParameters& parameters() const { return parameters_; }
+
+ private:
+  /// Returns false when the implicit return fails (the caller sub-steps).
+  bool update_once(const SymTensor& strain_increment, Stress& stress, StateSpan state) const;
+  void update_substepped(const SymTensor& strain_increment, Stress& stress, StateSpan state, int depth) const;
+
+  StructuredCamClayParameters parameters_;
+};
+
+}  // namespace dfc::fdm
