@@ -31,7 +31,8 @@ milliseconds to_ms(double seconds) { return milliseconds(static_cast<long long>(
 
 double scalar_monitor(const nlohmann::json& monitors, const char* name) {
   const auto it = monitors.find(name);
-  return it != monitors.end() && it->is_number() ? it->get<double>() : kNaN;
+  // + 0.0 turns a negative zero into 0, so summaries never print "-0 N".
+  return it != monitors.end() && it->is_number() ? it->get<double>() + 0.0 : kNaN;
 }
 
 std::array<double, 3> vector_monitor(const nlohmann::json& monitors, const char* name) {
