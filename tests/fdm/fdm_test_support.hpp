@@ -2,11 +2,28 @@
 // Shared set-up for the FDM tests: an elastic material and a run-to-equilibrium loop.
 #include <memory>
 
+#include <gtest/gtest.h>
+
 #include "dfc/fdm/elastic_model.hpp"
 #include "dfc/fdm/equilibrium.hpp"
+#include "dfc/fdm/hex_overlays.hpp"
 #include "dfc/fdm/solver.hpp"
 
 namespace dfc::fdm::test {
+
+/// Volume of a mesh from one overlay of its tetrahedra (five fill a zone);
+/// every tetrahedron of both overlays must have positive volume.
+inline double mesh_volume(const Mesh& mesh) {
+  double volume = 0.0;
+  for (Index z = 0; z < mesh.zone_count(); ++z) {
+    const auto tets = zone_tetrahedra(mesh, z);
+    for (std::size_t t = 0; t < kTetrahedraPerZone; ++t) {
+      EXPECT_GT(tets[t].volume, 0.0) << "zone " << z << " tetrahedron " << t;
+      if (t < 5) volume += tets[t].volume;
+    }
+  }
+  return volume;
+}
 
 inline Material elastic_material(double young_modulus, double poisson_ratio, double density) {
   return {density, std::make_unique<ElasticModel>(ElasticModel::from_young_poisson(young_modulus, poisson_ratio))};

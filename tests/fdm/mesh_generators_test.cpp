@@ -11,21 +11,12 @@
 #include "dfc/fdm/hex_overlays.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
 #include "dfc/fdm/mesh_quality.hpp"
+#include "fdm_test_support.hpp"
 
 namespace dfc::fdm {
 namespace {
 
-double mesh_volume(const Mesh& mesh) {
-  double volume = 0.0;
-  for (Index z = 0; z < mesh.zone_count(); ++z) {
-    const auto tets = zone_tetrahedra(mesh, z);
-    for (std::size_t t = 0; t < kTetrahedraPerZone; ++t) {
-      EXPECT_GT(tets[t].volume, 0.0) << "zone " << z << " tetrahedron " << t;
-      if (t < 5) volume += tets[t].volume;  // one overlay fills the zone
-    }
-  }
-  return volume;
-}
+using test::mesh_volume;
 
 TEST(Grading, GeometricSpacingHasExactEndsAndTheRequestedRatio) {
   const std::vector<double> x = geometric_spacing(-1.0, 2.0, 7, 1.3);
