@@ -12,22 +12,9 @@
 #include <fstream>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/process_status.hpp"
 
 namespace dfc::coupler {
-
-namespace {
-
-std::string describe_status(int status) {
-  if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    const char* name = strsignal(sig);
-    return "was killed by signal " + std::to_string(sig) + (name != nullptr ? " (" + std::string(name) + ")" : "");
-  }
-  return "stopped (status " + std::to_string(status) + ")";
-}
-
-}  // namespace
 
 ChildProcess::ChildProcess(const std::filesystem::path& executable, const std::vector<std::string>& args,
                            const std::filesystem::path& stderr_log, const std::filesystem::path& stdout_log)
@@ -128,7 +115,7 @@ std::optional<std::string> ChildProcess::exit_description() {
     if (::waitpid(pid_, &status, WNOHANG) == pid_) exit_status_ = status;
   }
   if (!exit_status_) return std::nullopt;
-  return describe_status(*exit_status_);
+  return describe_wait_status(*exit_status_);
 }
 
 bool ChildProcess::wait_exit(std::chrono::milliseconds timeout) {

@@ -15,6 +15,8 @@
 #include <string_view>
 #include <thread>
 
+#include "dfc/common/process_status.hpp"
+
 namespace dfc::conformance {
 
 namespace {
@@ -178,14 +180,7 @@ std::string ChildProcess::stderr_tail(std::size_t max_lines) const {
   return text.substr(begin);
 }
 
-std::string ChildProcess::describe_status(int status) {
-  if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    const char* name = ::strsignal(sig);
-    return "was killed by signal " + std::to_string(sig) + (name != nullptr ? " (" + std::string(name) + ")" : "");
-  }
-  return "stopped (wait status " + std::to_string(status) + ")";
-}
+std::string ChildProcess::describe_status(int status) { return describe_wait_status(status); }
+
 
 }  // namespace dfc::conformance
