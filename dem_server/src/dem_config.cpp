@@ -52,13 +52,27 @@ BedRegion read_region(ConfigReader cfg) {
   return region;
 }
 
-ParticleConfig read_particles(ConfigReader cfg) {
+/// Upscaling by S multiplies every generated radius by S and applies each
+/// law's declared rule (contact_law_registry.hpp, upscale()).
+ContactLawSetting read_upscaled_law(ConfigReader cfg, double scale_factor) {
+  return upscale(read_contact_law(std::move(cfg)), scale_factor);
+}
+
+double read_scale_factor(ConfigReader& section) {
+  auto upscaling = section.optional_child("upscaling");
+  if (!upscaling) return 1.0;
+  const double s = upscaling->positive("scale_factor");
+  upscaling->finish();
+  return s;
+}
+
+ParticleConfig read_particles(ConfigReader cfg, double scale_factor) {
   ParticleConfig p;
   p.generator = cfg.choice("generator", {"lattice", "list"});
   p.density = cfg.positive("density_kg_m3");
   if (p.generator == "lattice") {
-    p.lattice.radius_min = cfg.positive("radius_min_m");
-    p.lattice.radius_max = cfg.positive("radius_max_m");
+    p.lattice.radius_min = scale_factor * cfg.positive("radius_min_m");
+    p.lattice.radius_max = scale_factor * cfg.positive("radius_max_m");
     if (p.lattice.radius_max < p.lattice.radius_min) cfg.fail("radius_max_m", "must be at least radius_min_m");
     p.lattice.spacing_factor = cfg.number("spacing_factor", 1.05, Bounds{1.0, 10.0});
     p.lattice.arrangement =
@@ -68,6 +82,8 @@ ParticleConfig read_particles(ConfigReader cfg) {
     p.spheres = generate_lattice_bed(p.lattice);
     if (p.spheres.empty()) cfg.fail("region", "no sphere fits: the region must be at least 2 radius_max_m x spacing_factor wide in every direction");
   } else {
+    if (scale_factor != 1.0)
+      cfg.fail("generator", "\"list\" spheres are taken as given, so upscaling.scale_factor must be 1 with it; give the upscaled radii in the list or use a generator");
     const nlohmann::json& list = cfg.raw("spheres");
     if (!list.is_array() || list.empty()) cfg.fail("spheres", "expected a non-empty array of [x, y, z, radius] in m");
     for (std::size_t k = 0; k < list.size(); ++k) {
@@ -97,9 +113,9 @@ std::pair<Vec3, Vec3> bounding_box(const std::vector<GeneratedSphere>& spheres) 
   return {lo, hi};
 }
 
-ContactLawSetting read_optional_contact(ConfigReader& cfg, const ContactLawSetting& fallback) {
+ContactLawSetting read_optional_contact(ConfigReader& cfg, const ContactLawSetting& fallback, double scale_factor) {
   auto child = cfg.optional_child("contact");
-  return child ? read_contact_law(std::move(*child)) : fallback;
+  return child ? read_upscaled_law(std::move(*child), scale_factor) : fallback;
 }
 
 std::string read_wall_name(ConfigReader& cfg, std::size_t index, std::set<std::string>& used) {
@@ -140,7 +156,7 @@ WallMesh read_facet_mesh(ConfigReader& cfg) {
 }
 
 WallConfig read_wall(ConfigReader cfg, std::size_t index, std::set<std::string>& used, const ContactLawSetting& wall_contact,
-                     const std::pair<Vec3, Vec3>& particle_box) {
+                     const std::pair<Vec3, Vec3>& particle_box, double scale_factor) {
   WallConfig wall;
   const std::string type = cfg.choice("type", {"plane", "facets"});
   wall.name = read_wall_name(cfg, index, used);
@@ -157,12 +173,12 @@ WallConfig read_wall(ConfigReader cfg, std::size_t index, std::set<std::string>&
   }
   wall.velocity = to_vec3(cfg.vec3("velocity_m_s", {0.0, 0.0, 0.0}));
   wall.start_step = cfg.integer("start_step", 0, 0);
-  wall.contact = read_optional_contact(cfg, wall_contact);
+  wall.contact = read_optional_contact(cfg, wall_contact, scale_factor);
   cfg.finish();
   return wall;
 }
 
-PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact) {
+PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact, double scale_factor) {
   PileConfig pile;
   const auto axis = read_xy(cfg, "axis_xy_m");
   pile.geometry.axis_x = axis[0];
@@ -173,7 +189,7 @@ PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact) {
   pile.geometry.sides = int(cfg.integer("sides", 24, 3));
   pile.velocity = to_vec3(cfg.vec3("velocity_m_s", {0.0, 0.0, 0.0}));
   pile.start_step = cfg.integer("start_step", 0, 0);
-  pile.contact = read_optional_contact(cfg, wall_contact);
+  pile.contact = read_optional_contact(cfg, wall_contact, scale_factor);
   cfg.finish();
   return pile;
 }
@@ -275,10 +291,11 @@ TimestepConfig read_timestep(ConfigReader& root) {
 DemConfig parse_dem_config(const nlohmann::json& section) {
   ConfigReader cfg(section, "");
   DemConfig c;
-  c.particles = read_particles(cfg.child("particles"));
-  c.contact = read_contact_law(cfg.child("contact"));
+  c.scale_factor = read_scale_factor(cfg);
+  c.particles = read_particles(cfg.child("particles"), c.scale_factor);
+  c.contact = read_upscaled_law(cfg.child("contact"), c.scale_factor);
   auto wall_contact = cfg.optional_child("wall_contact");
-  c.wall_contact = wall_contact ? read_contact_law(std::move(*wall_contact)) : c.contact;
+  c.wall_contact = wall_contact ? read_upscaled_law(std::move(*wall_contact), c.scale_factor) : c.contact;
   if (auto damping = cfg.optional_child("damping")) {
     c.local_damping = damping->number("local", 0.7, Bounds{0.0, 1.0});
     if (c.local_damping >= 1.0) damping->fail("local", "must be below 1 (1 would cancel every driving force)");
@@ -295,11 +312,11 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
   if (cfg.has("walls")) {
     std::set<std::string> names;
     auto walls = cfg.children("walls");
-    for (std::size_t k = 0; k < walls.size(); ++k) c.walls.push_back(read_wall(std::move(walls[k]), k, names, c.wall_contact, box));
+    for (std::size_t k = 0; k < walls.size(); ++k) c.walls.push_back(read_wall(std::move(walls[k]), k, names, c.wall_contact, box, c.scale_factor));
   } else {
     cfg.accept("walls");
   }
-  if (auto pile = cfg.optional_child("pile")) c.pile = read_pile(std::move(*pile), c.wall_contact);
+  if (auto pile = cfg.optional_child("pile")) c.pile = read_pile(std::move(*pile), c.wall_contact, c.scale_factor);
   if (auto ucs = cfg.optional_child("ucs")) c.ucs = read_ucs(std::move(*ucs), c);
   c.threads = int(cfg.integer("threads", 0, 0));
   cfg.finish();
@@ -317,6 +334,9 @@ std::string dem_config_help() {
                {"type":"box", "min_m":[x,y,z], "max_m":[x,y,z]} or
                {"type":"cylinder", "radius_m", "z_min_m", "z_max_m", "axis_xy_m":[0,0]}
     list:    spheres: [[x, y, z, radius], ...]
+  upscaling       {"scale_factor": S} particle upscaling (default S = 1): every generated radius is
+                  multiplied by S and every contact-law parameter follows its law's declared rule (value x
+                  S^exponent, see "upscaling by S" below); the domain, walls and strain rates stay as given
   contact         (required) particle-particle law: {"law": keyword (default "linear"), parameters...}
   wall_contact    particle-wall law, same form (default: contact); used by the coupling wall
   damping         {"local": 0.7}  local non-viscous damping alpha in [0, 1)

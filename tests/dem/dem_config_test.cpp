@@ -67,5 +67,44 @@ TEST(DemConfig, MissingStiffnessAndFixedStepAboveCriticalAreRefused) {
   EXPECT_EQ(error_of(c).key_path(), "timestep.dt_s");
 }
 
+// Particle upscaling (DESIGN §5, reference dem-physics.md §3.7): radii x S and
+// each law's declared rule. Exact equality: the rules are products by powers of
+// S = 2, exact in binary floating point.
+TEST(DemConfig, UpscalingScalesRadiiAndFollowsEachLawsRule) {
+  nlohmann::json c = test::box_bed_config();
+  c["particles"]["region"]["max_m"] = {0.12, 0.12, 0.07};  // room for the doubled spheres
+  const DemConfig base = parse_dem_config(c);
+  c["upscaling"] = {{"scale_factor", 2.0}};
+  const DemConfig up = parse_dem_config(c);
+  EXPECT_EQ(up.scale_factor, 2.0);
+  EXPECT_EQ(up.particles.lattice.radius_min, 2.0 * base.particles.lattice.radius_min);
+  EXPECT_EQ(up.particles.lattice.radius_max, 2.0 * base.particles.lattice.radius_max);
+  for (const auto& s : up.particles.spheres) EXPECT_GE(s.radius, up.particles.lattice.radius_min);
+  // linear: stiffness ~ E* R (exponent 1), friction and damping ratio fixed.
+  const auto& law = std::get<LinearLaw>(up.contact.law);
+  EXPECT_EQ(law.kn, 2.0 * std::get<LinearLaw>(base.contact.law).kn);
+  EXPECT_EQ(law.friction, std::get<LinearLaw>(base.contact.law).friction);
+  EXPECT_EQ(std::get<LinearLaw>(up.walls[1].contact.law).kn, 2.0 * std::get<LinearLaw>(base.walls[1].contact.law).kn);  // per-wall law too
+
+  // soft_bond: moduli and strengths fixed, bonding gap x S.
+  c["contact"] = {{"law", "soft_bond"}, {"emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_ten_pa", 4.5e5}, {"sb_coh_pa", 4.5e5}, {"sb_fa_deg", 32},
+                  {"sb_soft", 100},     {"sb_cut", 0.05},   {"bond_gap_m", 6e-5}};
+  const DemConfig soft = parse_dem_config(c);
+  EXPECT_EQ(soft.contact.bond_gap(), 1.2e-4);
+  EXPECT_EQ(std::get<SoftBondLaw>(soft.contact.law).emod, 2.8e9);
+  EXPECT_EQ(std::get<SoftBondLaw>(soft.contact.law).tensile_strength, 4.5e5);
+}
+
+TEST(DemConfig, UpscalingAListedPackingIsRefusedWithTheFix) {
+  nlohmann::json c = test::box_bed_config();
+  c["particles"] = {{"generator", "list"}, {"density_kg_m3", 2650}, {"spheres", {{0.01, 0.01, 0.01, 0.004}}}};
+  c["upscaling"] = {{"scale_factor", 2.0}};
+  const ConfigError e = error_of(c);
+  EXPECT_EQ(e.key_path(), "particles.generator");
+  EXPECT_NE(e.reason().find("scale_factor"), std::string::npos) << e.what();
+  c["upscaling"] = {{"scale_factor", 0.0}};
+  EXPECT_EQ(error_of(c).key_path(), "upscaling.scale_factor");
+}
+
 }  // namespace
 }  // namespace dfc::dem

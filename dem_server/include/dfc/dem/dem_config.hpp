@@ -53,6 +53,7 @@ struct TimestepConfig {
 };
 
 struct DemConfig {
+  double scale_factor = 1.0;       ///< particle upscaling S (radii and law parameters already scaled)
   ParticleConfig particles;
   ContactLawSetting contact;       ///< particle–particle
   ContactLawSetting wall_contact;  ///< particle–wall default, and the coupling wall
