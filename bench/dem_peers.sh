@@ -51,4 +51,15 @@ for p in 1 2; do
     printf "%-10s %-6s %14.3g %12.3f\n" "$code" "$p" "$v" "$(awk -v a="$o" -v b="$v" 'BEGIN{print (b > 0 ? a / b : 0)}')"
   done
 done
+
+# 4. Targets of issue 3 measured in the same run: 1 -> 2 thread speed-up, and
+#    bonded (every touching pair bonded by linear_pbond) against unbonded.
+BONDED=$("$BUILD/bin/dem_throughput" --data "$DATA" --threads "1 2" --warmup "$WARMUP" --steps "$STEPS" --law linear_pbond)
+echo "$BONDED" | sed 's/^/ours bonded: /'
+bonded() { echo "$BONDED" | awk -v t="$1" '$1 == "threads" && $2 == t":" {print $3}'; }
+printf "\n%-34s %8s %8s\n" "ours" "value" "target"
+printf "%-34s %8.3f %8s\n" "speed-up 1 -> 2 threads (linear)" "$(awk -v a="$(ours 2)" -v b="$(ours 1)" 'BEGIN{print a / b}')" ">= 1.7"
+for p in 1 2; do
+  printf "%-34s %8.3f %8s\n" "bonded / unbonded, $p thread(s)" "$(awk -v a="$(bonded $p)" -v b="$(ours $p)" 'BEGIN{print a / b}')" ">= 0.7"
+done
 echo "(logs: $LOGS)"

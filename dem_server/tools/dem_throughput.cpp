@@ -1,7 +1,13 @@
 // dem_throughput: time the DEM hot loop on a settled bed (particle-steps/s).
 //
 //   dem_throughput [--side N] [--layers N] [--threads "1 2"] [--steps N] [--max-settle N]
-//   dem_throughput --data FILE [--threads "1 2"] [--warmup 1000] [--steps 2000]
+//   dem_throughput --data FILE [--threads "1 2"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond]
+//
+// --law linear_pbond: the same packing with every pair closer than 10 um
+// bonded by a linear parallel bond as stiff as the contact and too strong to
+// break (the bonded throughput of issue 3; the peers' README lists LAMMPS BPM
+// with every contact bonded). Its linear part is the same contact: k_n =
+// pi E* R^2/(2R) = 1e5 N/m for the mean pair (R = 0.55 mm) gives E* = 1.157e8 Pa.
 //
 // --data: the peer benchmark (shared/bench/peers/README.md) on a LAMMPS data
 // file (atom_style sphere: id type diameter density x y z): kn 1e5 N/m,
@@ -26,6 +32,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <numbers>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -48,6 +55,7 @@ struct Options {
   int max_settle = 400000;
   std::string data;  ///< LAMMPS data file: the peer benchmark instead of the settled bed
   int warmup = 1000;
+  std::string law = "linear";  ///< --data only: "linear" or "linear_pbond"
 };
 
 Options parse(int argc, char** argv) {
@@ -57,7 +65,7 @@ Options parse(int argc, char** argv) {
     if (a == "--help" || a == "-h") {
       std::cout << "dem_throughput: time the DEM hot loop (particle-steps/s)\n\n"
                    "  dem_throughput [--side N] [--layers N] [--threads \"1 2\"] [--steps N] [--max-settle N]\n"
-                   "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000]\n\n"
+                   "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond]\n\n"
                    "Without --data: settles a bed of N x N x layers spheres, then times --steps steps per thread count.\n"
                    "With --data: the peer benchmark on a LAMMPS data file (../shared/bench/peers; see bench/dem_peers.sh).\n";
       std::exit(0);
@@ -75,6 +83,10 @@ Options parse(int argc, char** argv) {
     else if (a == "--max-settle") o.max_settle = std::stoi(v);
     else if (a == "--data") o.data = v;
     else if (a == "--warmup") o.warmup = std::stoi(v);
+    else if (a == "--law") {
+      if (v != "linear" && v != "linear_pbond") throw std::runtime_error("--law must be linear or linear_pbond, not " + v);
+      o.law = v;
+    }
     else if (a == "--threads") {
       o.threads.clear();
       std::istringstream list(v);
@@ -137,9 +149,17 @@ PeerPacking read_lammps_data(const std::string& path) {
   return pack;
 }
 
-nlohmann::json peer_scenario(const PeerPacking& pack, int threads) {
-  const nlohmann::json law = {{"kn_n_m", 1e5}, {"ks_n_m", 1e5 * 2.0 / 7.0}, {"friction", 0.5}, {"damping_ratio_normal", 0.215}};
-  nlohmann::json smooth = law;
+/// The peers' contact; "linear_pbond": the same contact with an unbreakable bond on every touching pair.
+nlohmann::json peer_law(const std::string& law) {
+  if (law == "linear") return {{"kn_n_m", 1e5}, {"ks_n_m", 1e5 * 2.0 / 7.0}, {"friction", 0.5}, {"damping_ratio_normal", 0.215}};
+  const double emod = 1e5 / (std::numbers::pi * 0.55e-3 / 2.0);
+  return {{"law", "linear_pbond"}, {"emod_pa", emod},  {"kratio", 3.5},       {"friction", 0.5},      {"damping_ratio_normal", 0.215},
+          {"pb_emod_pa", emod},    {"pb_kratio", 3.5}, {"pb_ten_pa", 1e15}, {"pb_coh_pa", 1e15}, {"bond_gap_m", 1e-5}};
+}
+
+nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::string& law_name) {
+  const nlohmann::json law = peer_law(law_name);
+  nlohmann::json smooth = peer_law("linear");
   smooth["friction"] = 0.0;
   // The periodic packing has spheres across the x and y faces: the side walls
   // stand one largest radius outside the cell so that none is cut.
@@ -160,6 +180,7 @@ nlohmann::json peer_scenario(const PeerPacking& pack, int threads) {
     walls.push_back({{"type", "plane"}, {"point_m", point}, {"normal", normal}, {"half_size_m", half}, {"contact", smooth}});
   return {{"particles", {{"generator", "list"}, {"spheres", pack.spheres}, {"density_kg_m3", 2650}}},
           {"contact", law},
+          {"wall_contact", peer_law("linear")},
           {"damping", {{"local", 0.0}}},
           {"timestep", {{"dt_s", 1e-6}}},
           {"gravity_m_s2", {0, 0, -9.81}},
@@ -172,7 +193,7 @@ nlohmann::json peer_scenario(const PeerPacking& pack, int threads) {
 void run_peer_benchmark(const Options& o) {
   const PeerPacking pack = read_lammps_data(o.data);
   for (const int threads : o.threads) {
-    DemModel model = build_model(parse_dem_config(peer_scenario(pack, threads)));
+    DemModel model = build_model(parse_dem_config(peer_scenario(pack, threads, o.law)));
     Simulation& sim = *model.simulation;
     if (model.removed_particles > 0) std::cout << model.removed_particles << " spheres cut by the side walls were removed\n";
     sim.run(o.warmup, 1e-6);
@@ -183,7 +204,9 @@ void run_peer_benchmark(const Options& o) {
     const Measurements m = measure(sim);
     std::cout << "threads " << sim.threads() << ": " << double(sim.particles().size()) * o.steps / seconds << " particle-steps/s ("
               << seconds << " s for " << o.steps << " steps of " << sim.particles().size() << " particles, " << sim.rebuild_count() - rebuilds
-              << " rebuilds, coordination " << m.coordination_number << ", kinetic energy " << m.kinetic_energy << " J)\n";
+              << " rebuilds, coordination " << m.coordination_number << ", kinetic energy " << m.kinetic_energy << " J";
+    if (sim.settings().particle_law.bonded()) std::cout << ", bonds intact " << sim.bond_counts().intact;
+    std::cout << ")\n";
   }
 }
 
