@@ -2,6 +2,7 @@
 """Plot the time series of a dfc results file (HDF5, format "dfc-results-1") as PNGs.
 
     plot_results.py RESULTS.h5 [--out DIR]
+    plot_results.py RESULTS.h5 RESULTS.h5 ... --out DIR     (overlay of several runs)
 
 Writes, for the columns present under /timeseries (either name is accepted;
 the second is what the coupler records: "<slot>_<monitor>" and its own columns):
@@ -15,6 +16,15 @@ the second is what the coupler records: "<slot>_<monitor>" and its own columns):
                                (ufr_<side> | <side>_unbalanced_force_ratio)
   stress_strain.png            axial stress against axial strain of a platen test (UCS)
                                (dem_axial_strain, dem_axial_stress_pa), with the peak marked
+With several results files (e.g. the variants of one scenario, or the same pile
+run against different continua) it writes overlays instead, one curve per run
+labelled by the run's folder name:
+  stress_strain_overlay.png    axial stress-strain of every run, peaks marked, and
+                               prints per run: peak stress, strain at peak, initial
+                               stiffness (least-squares slope of the pre-peak points
+                               below 30 % of the peak) and the spread of both
+                               ((max - min) / mean) across the runs
+  pile_force_overlay.png       pile force against displacement of every run
 A plot whose columns are absent is skipped. The time axis is time_s if present,
 else step, else exchange, else the row number. Prints the path of every file written.
 The file may still be open in a running coupler: it is read without the HDF5
@@ -165,12 +175,10 @@ def plot_unbalanced(series, out_dir):
 
 
 def plot_stress_strain(series, out_dir):
-    strain = column(series, "axial_strain", "dem_axial_strain")
-    stress = column(series, "axial_stress_pa", "dem_axial_stress_pa")
-    if strain is None or stress is None:
+    columns = stress_strain_columns(series)
+    if columns is None:
         return None
-    n = min(len(strain), len(stress))
-    strain, stress = strain[:n], stress[:n]
+    strain, stress = columns
     peak = int(np.argmax(stress))
     fig, ax = plt.subplots(figsize=(6, 4.5))
     ax.plot(strain * 100, stress / 1e3, color="tab:blue")
@@ -183,20 +191,104 @@ def plot_stress_strain(series, out_dir):
     return save(fig, out_dir, "stress_strain.png")
 
 
+def stress_strain_columns(series):
+    strain = column(series, "axial_strain", "dem_axial_strain")
+    stress = column(series, "axial_stress_pa", "dem_axial_stress_pa")
+    if strain is None or stress is None:
+        return None
+    n = min(len(strain), len(stress))
+    return strain[:n], stress[:n]
+
+
+def initial_stiffness(strain, stress):
+    """Least-squares slope through the pre-peak points below 30 % of the peak (Pa)."""
+    peak = int(np.argmax(stress))
+    pre = np.arange(peak + 1)
+    mask = stress[pre] <= 0.3 * stress[peak]
+    if mask.sum() < 2:
+        return float("nan")
+    return float(np.polyfit(strain[pre][mask], stress[pre][mask], 1)[0])
+
+
+def spread(values):
+    values = np.asarray(values, dtype=float)
+    return float((values.max() - values.min()) / values.mean()) if len(values) and values.mean() != 0 else float("nan")
+
+
+def plot_overlays(runs, out_dir):
+    """runs: [(label, series)]; one curve per run."""
+    written = []
+    curves = [(label, stress_strain_columns(series)) for label, series in runs]
+    curves = [(label, c) for label, c in curves if c is not None]
+    if curves:
+        fig, ax = plt.subplots(figsize=(6.5, 4.8))
+        peaks, stiffnesses = [], []
+        print(f"{'run':<24} {'peak [kPa]':>11} {'strain at peak':>15} {'E_initial [MPa]':>16}")
+        for label, (strain, stress) in curves:
+            peak = int(np.argmax(stress))
+            stiffness = initial_stiffness(strain, stress)
+            peaks.append(stress[peak])
+            stiffnesses.append(stiffness)
+            print(f"{label:<24} {stress[peak] / 1e3:>11.2f} {strain[peak]:>15.4e} {stiffness / 1e6:>16.2f}")
+            line, = ax.plot(strain * 100, stress / 1e3, label=f"{label}: peak {stress[peak] / 1e3:.1f} kPa")
+            ax.plot([strain[peak] * 100], [stress[peak] / 1e3], "o", color=line.get_color())
+        print(f"spread (max - min) / mean: peak {spread(peaks) * 100:.2f} %, initial stiffness {spread(stiffnesses) * 100:.2f} %")
+        ax.set_xlabel("axial strain [%]")
+        ax.set_ylabel("axial stress [kPa]")
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        ax.set_title("Stress-strain, " + ", ".join(label for label, _ in curves))
+        written.append(save(fig, out_dir, "stress_strain_overlay.png"))
+    displacement_names, force_names = pile_columns()
+    piles = [(label, column(series, *displacement_names), column(series, *force_names)) for label, series in runs]
+    piles = [(label, d, f) for label, d, f in piles if d is not None and f is not None]
+    if piles:
+        fig, ax = plt.subplots(figsize=(6.5, 4.8))
+        for label, displacement, force in piles:
+            n = min(len(displacement), len(force))
+            ax.plot(force[:n] / 1e3, displacement[:n] * 1e3, label=label)
+        ax.set_xlabel("pile force [kN]")
+        ax.set_ylabel("pile displacement [mm]")
+        ax.invert_yaxis()
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+        ax.set_title("Pile load-displacement")
+        written.append(save(fig, out_dir, "pile_force_overlay.png"))
+    return written
+
+
+def run_label(path):
+    """The run's folder name (a variant's label), else the file name."""
+    folder = os.path.basename(os.path.dirname(os.path.abspath(path)))
+    return folder or os.path.basename(path)
+
+
+def load(path):
+    if not os.path.isfile(path):
+        sys.exit(f"plot_results.py: no such file '{path}'")
+    try:
+        return read_series(path)
+    except OSError as error:
+        sys.exit(f"plot_results.py: cannot read '{path}' as HDF5 ({error})")
+
+
 def main(argv=None):
-    parser = argparse.ArgumentParser(description="Plot a dfc results file (HDF5) as PNGs.")
-    parser.add_argument("results", help="results file written by the coupler (.h5)")
-    parser.add_argument("--out", default=None, help="output directory (default: next to the results file)")
+    parser = argparse.ArgumentParser(description="Plot a dfc results file (HDF5) as PNGs; several files: overlays.")
+    parser.add_argument("results", nargs="+", help="results file(s) written by the coupler (.h5)")
+    parser.add_argument("--out", default=None, help="output directory (default: next to the (first) results file)")
     args = parser.parse_args(argv)
 
-    if not os.path.isfile(args.results):
-        sys.exit(f"plot_results.py: no such file '{args.results}'")
-    out_dir = args.out if args.out else (os.path.dirname(os.path.abspath(args.results)))
+    out_dir = args.out if args.out else (os.path.dirname(os.path.abspath(args.results[0])))
     os.makedirs(out_dir, exist_ok=True)
-    try:
-        series = read_series(args.results)
-    except OSError as error:
-        sys.exit(f"plot_results.py: cannot read '{args.results}' as HDF5 ({error})")
+    if len(args.results) > 1:
+        written = plot_overlays([(run_label(path), load(path)) for path in args.results], out_dir)
+        if not written:
+            print("plot_results.py: the runs have no stress-strain or pile columns to overlay")
+        for path in written:
+            print(path)
+        return 0
+    args.results = args.results[0]
+    series = load(args.results)
 
     plots = (plot_pile, plot_interface, plot_unbalanced, plot_stress_strain)
     written = [path for path in (plot(series, out_dir) for plot in plots) if path]

@@ -44,7 +44,9 @@ void print_help() {
                "  name, description, gravity {g_m_s2, g_level, direction},\n"
                "  participants {dem, continuum}: each {program | endpoint, args, config},\n"
                "  coupling {exchange_interval, continuum_steps_per_exchange, dt_s, force_balance_tolerance, scheme},\n"
-               "  run {exchanges, deadline_s, startup_timeout_s, snapshot_every}, output {directory}.\n"
+               "  run {exchanges, deadline_s, startup_timeout_s, snapshot_every}, output {directory},\n"
+               "  variants [{label, patch}] (optional: one run per entry, the scenario with `patch` applied as a\n"
+               "  JSON Merge Patch, named <name>_<label>, results in <output.directory>/<label>).\n"
                "See README.md (Scenarios) and scenarios/*.json.\n";
 }
 
@@ -89,18 +91,37 @@ int run_command(int argc, char** argv) {
   }
   if (scenario_path.empty()) throw dfc::UserError("no scenario file given (coupler " + std::string(command) + " SCENARIO.json)");
 
-  const auto scenario = dfc::coupler::load_scenario(scenario_path, own_bin_dir());
+  const auto scenarios = dfc::coupler::load_scenarios(scenario_path, own_bin_dir());
+  const bool variants = !scenarios.front().variant_label.empty();
   if (command == "check") {
-    std::cout << "Checking " << scenario_path.string() << " ...\n";
-    dfc::coupler::check_scenario(scenario, std::cout);
-    std::cout << scenario_path.string() << ": OK\n";
+    for (const auto& scenario : scenarios) {
+      std::cout << "Checking " << scenario_path.string() << (variants ? " (" + scenario.name + ")" : std::string()) << " ...\n";
+      dfc::coupler::check_scenario(scenario, std::cout);
+    }
+    std::cout << scenario_path.string() << ": OK" << (variants ? " (" + std::to_string(scenarios.size()) + " variants)" : std::string()) << "\n";
     return 0;
   }
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
   std::signal(SIGPIPE, SIG_IGN);
   options.stop_requested = &g_stop_requested;
-  return dfc::coupler::run_scenario(scenario, options, std::cout);
+  const fs::path out_override = options.output_directory;
+  for (std::size_t k = 0; k < scenarios.size(); ++k) {
+    const auto& scenario = scenarios[k];
+    if (variants) {
+      std::cout << "=== Variant " << k + 1 << "/" << scenarios.size() << ": " << scenario.name << "\n";
+      if (!out_override.empty()) options.output_directory = out_override / scenario.variant_label;
+    }
+    const int status = dfc::coupler::run_scenario(scenario, options, std::cout);
+    if (status != 0) return status;
+  }
+  if (variants) {
+    const fs::path parent = scenarios.front().output_directory.parent_path();
+    const fs::path folder = out_override.empty() ? parent : out_override;
+    std::cout << "All " << scenarios.size() << " variants done. Overlay plots: tools/plot_results.py " << (folder / "*" / "results.h5").string()
+              << " --out " << folder.string() << "\n";
+  }
+  return 0;
 }
 
 }  // namespace

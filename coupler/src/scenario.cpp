@@ -9,6 +9,7 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/coupler/scenario_variants.hpp"
 
 namespace dfc::coupler {
 
@@ -80,7 +81,7 @@ const ParticipantSpec* Scenario::participant(std::string_view slot) const {
   return nullptr;
 }
 
-Scenario load_scenario(const fs::path& path, const fs::path& bin_dir) {
+std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_dir) {
   std::ifstream in(path);
   if (!in) throw UserError("cannot open scenario file '" + path.string() + "'; check the path");
   std::stringstream text;
@@ -91,7 +92,17 @@ Scenario load_scenario(const fs::path& path, const fs::path& bin_dir) {
   } catch (const nlohmann::json::parse_error& e) {
     throw UserError("scenario '" + path.string() + "' is not valid JSON: " + e.what());
   }
-  return parse_scenario(document, path, bin_dir);
+  std::vector<Scenario> scenarios;
+  for (const ScenarioVariant& variant : expand_variants(document)) {
+    try {
+      scenarios.push_back(parse_scenario(variant.document, path, bin_dir));
+      scenarios.back().variant_label = variant.label;
+    } catch (const ConfigError& e) {
+      if (variant.label.empty()) throw;
+      throw ConfigError(e.key_path(), "(variant \"" + variant.label + "\") " + e.reason());
+    }
+  }
+  return scenarios;
 }
 
 Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, const fs::path& bin_dir) {

@@ -56,14 +56,17 @@ struct Scenario {
   std::filesystem::path output_directory;
   nlohmann::json document;  ///< the whole scenario as read (written to the results)
   std::filesystem::path source;
+  std::string variant_label;  ///< the label of this run in the file's "variants"; empty without
 
   [[nodiscard]] const ParticipantSpec* participant(std::string_view slot) const;
 };
 
-/// Reads and validates `path`. `bin_dir` is where the project's executables
-/// are (bare program names are looked up there first, then on PATH).
-/// Throws dfc::ConfigError (key path + reason) or dfc::UserError.
-[[nodiscard]] Scenario load_scenario(const std::filesystem::path& path, const std::filesystem::path& bin_dir);
+/// Reads and validates `path`: one run, or one per entry of "variants"
+/// (scenario_variants.hpp), in order. `bin_dir` is where the project's
+/// executables are (bare program names are looked up there first, then on
+/// PATH). Throws dfc::ConfigError (key path + reason; a variant's error names
+/// its label) or dfc::UserError.
+[[nodiscard]] std::vector<Scenario> load_scenarios(const std::filesystem::path& path, const std::filesystem::path& bin_dir);
 
 /// Same, from an already-parsed document.
 [[nodiscard]] Scenario parse_scenario(const nlohmann::json& document, const std::filesystem::path& source, const std::filesystem::path& bin_dir);
