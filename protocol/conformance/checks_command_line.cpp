@@ -14,13 +14,13 @@ namespace {
 void expect_flag_prints_text(Context& context, const std::string& flag) {
   std::vector<std::string> argv = context.options().command;
   argv.push_back(flag);
-  ChildProcess process(argv);
+  Subprocess process(argv);
   const auto started = std::chrono::steady_clock::now();
   const std::string text = process.read_rest(context.timeout());
   const auto used = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - started);
   const auto status = process.wait_exit(std::max(context.timeout() - used, std::chrono::milliseconds(200)));
   expect(status.has_value(), "'" + process.command() + "' did not exit within the timeout");
-  expect(WIFEXITED(*status) && WEXITSTATUS(*status) == 0, "'" + process.command() + "' " + ChildProcess::describe_status(*status) +
+  expect(WIFEXITED(*status) && WEXITSTATUS(*status) == 0, "'" + process.command() + "' " + Subprocess::describe_status(*status) +
                                                               ", expected status 0; stderr: " + process.stderr_tail(3));
   expect(std::any_of(text.begin(), text.end(), [](unsigned char c) { return std::isgraph(c) != 0; }),
          "'" + process.command() + "' printed nothing on stdout");

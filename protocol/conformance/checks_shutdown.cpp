@@ -24,7 +24,7 @@ void process_exits_zero(Context& context) {
   const auto status = context.server().wait_exit(kExitDeadline);
   expect(status.has_value(), "the server did not exit within " + std::to_string(kExitDeadline.count()) + " s of shutdown");
   expect(WIFEXITED(*status) && WEXITSTATUS(*status) == 0,
-         "after shutdown the server " + ChildProcess::describe_status(*status) + ", expected status 0");
+         "after shutdown the server " + Subprocess::describe_status(*status) + ", expected status 0");
 }
 
 void stdout_has_only_the_listening_line(Context& context) {

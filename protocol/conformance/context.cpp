@@ -19,7 +19,7 @@ bool is_port(std::string_view text) {
 
 Context::Context(Options options) : options_(std::move(options)) {}
 
-ChildProcess& Context::server() {
+Subprocess& Context::server() {
   if (!server_) throw CheckFailure("the server was not started");
   return *server_;
 }
@@ -28,7 +28,7 @@ void Context::start_server() {
   std::vector<std::string> argv = options_.command;
   argv.insert(argv.end(), {"--bind", "tcp://127.0.0.1:*"});
   try {
-    server_ = std::make_unique<ChildProcess>(argv);
+    server_ = std::make_unique<Subprocess>(argv);
   } catch (const std::exception& e) {
     throw CheckFailure(e.what());
   }
@@ -36,7 +36,7 @@ void Context::start_server() {
   if (!line) {
     // stdout closed early usually means the process is exiting: give it a moment to say how.
     if (const auto status = server_->wait_exit(std::chrono::milliseconds(500)))
-      throw CheckFailure("the server " + ChildProcess::describe_status(*status) + " without printing 'DFC-LISTENING <endpoint>'");
+      throw CheckFailure("the server " + Subprocess::describe_status(*status) + " without printing 'DFC-LISTENING <endpoint>'");
     throw CheckFailure("no line 'DFC-LISTENING <endpoint>' on stdout within " + std::to_string(options_.timeout.count()) +
                        " ms (is stdout flushed after it?)");
   }
@@ -54,7 +54,7 @@ void Context::start_server() {
 
 void Context::check_still_running() {
   if (exit_expected_ || !server_) return;
-  if (const auto status = server_->poll_exit()) throw ServerGone("the server " + ChildProcess::describe_status(*status));
+  if (const auto status = server_->poll_exit()) throw ServerGone("the server " + Subprocess::describe_status(*status));
 }
 
 protocol::Message Context::request(protocol::Message request) {

@@ -13,7 +13,7 @@
 #include <zmq.hpp>
 
 #include "check.hpp"
-#include "child_process.hpp"
+#include "dfc/common/subprocess.hpp"
 #include "dfc/protocol/client.hpp"
 #include "options.hpp"
 
@@ -35,7 +35,7 @@ class Context {
   /// Starts COMMAND ARGS --bind tcp://127.0.0.1:*, reads the listening line
   /// and connects. Throws CheckFailure saying what went wrong.
   void start_server();
-  [[nodiscard]] ChildProcess& server();
+  [[nodiscard]] Subprocess& server();
   [[nodiscard]] bool server_started() const noexcept { return server_ != nullptr; }
   [[nodiscard]] const std::string& endpoint() const noexcept { return endpoint_; }
 
@@ -77,7 +77,7 @@ class Context {
   Options options_;
   zmq::context_t zmq_context_{1};
   std::optional<protocol::Connection> connection_;
-  std::unique_ptr<ChildProcess> server_;
+  std::unique_ptr<Subprocess> server_;
   std::string endpoint_;
   std::int64_t next_raw_seq_ = 1'000'000;  ///< far from the connection's own 1, 2, 3 ...
   bool exit_expected_ = false;

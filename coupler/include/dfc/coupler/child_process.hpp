@@ -1,8 +1,9 @@
 #pragma once
 // ChildProcess: a server started by the coupler (DESIGN §2: the coupler owns
-// the run). stdout is read for the DFC-LISTENING line and then copied to a log
-// file by a small thread; stderr goes straight to a log file so nothing a
-// crashing server printed is lost, and its tail can be quoted in the error.
+// the run), on top of dfc::Subprocess. stdout is read for the DFC-LISTENING
+// line and then copied to a log file by a small thread (a full pipe would
+// block the server); stderr goes straight to a log file so nothing a crashing
+// server printed is lost, and its tail can be quoted in the error.
 #include <sys/types.h>
 
 #include <chrono>
@@ -12,12 +13,13 @@
 #include <thread>
 #include <vector>
 
+#include "dfc/common/subprocess.hpp"
+
 namespace dfc::coupler {
 
 class ChildProcess {
  public:
   /// Starts `executable args...` with stdout to a pipe and stderr to `stderr_log`.
-  /// The child gets SIGKILL if the coupler dies (PR_SET_PDEATHSIG).
   ChildProcess(const std::filesystem::path& executable, const std::vector<std::string>& args, const std::filesystem::path& stderr_log,
                const std::filesystem::path& stdout_log);
   ~ChildProcess();
@@ -36,20 +38,17 @@ class ChildProcess {
   /// SIGKILL and reap (no-op if already gone).
   void kill();
 
-  /// The last `lines` lines of its stderr log.
+  /// The last `lines` lines of its stderr log, indented for quoting.
   [[nodiscard]] std::string stderr_tail(std::size_t lines) const;
-  [[nodiscard]] pid_t pid() const noexcept { return pid_; }
+  [[nodiscard]] pid_t pid() const noexcept { return process_.pid(); }
   [[nodiscard]] const std::filesystem::path& stderr_log() const noexcept { return stderr_log_; }
 
  private:
   void start_stdout_copier();
 
-  pid_t pid_ = -1;
-  int stdout_fd_ = -1;
-  std::optional<int> exit_status_;  ///< raw waitpid status once reaped
   std::filesystem::path stderr_log_;
   std::filesystem::path stdout_log_;
-  std::string stdout_buffer_;
+  Subprocess process_;
   std::thread stdout_copier_;
 };
 

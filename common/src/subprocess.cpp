@@ -1,4 +1,4 @@
-#include "child_process.hpp"
+#include "dfc/common/subprocess.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -15,16 +15,17 @@
 #include <string_view>
 #include <thread>
 
+#include "dfc/common/errors.hpp"
 #include "dfc/common/process_status.hpp"
 
-namespace dfc::conformance {
+namespace dfc {
 
 namespace {
 
 std::string system_error(const std::string& what) { return what + ": " + std::strerror(errno); }
 
 // execv needs a path; searching PATH here, before fork, keeps the child to
-// async-signal-safe calls only (the checker has ZeroMQ I/O threads running).
+// async-signal-safe calls only (the supervisor has ZeroMQ I/O threads running).
 std::string resolve_executable(const std::string& name) {
   if (name.find('/') != std::string::npos) return name;
   const char* path = std::getenv("PATH");
@@ -37,7 +38,7 @@ std::string resolve_executable(const std::string& name) {
     if (colon == std::string_view::npos) break;
     dirs.remove_prefix(colon + 1);
   }
-  throw std::runtime_error("cannot run '" + name + "': not found in PATH");
+  throw UserError("cannot run '" + name + "': not found in PATH");
 }
 
 std::string join(const std::vector<std::string>& argv) {
@@ -48,8 +49,8 @@ std::string join(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv) : command_(join(argv)) {
-  if (argv.empty()) throw std::runtime_error("no command given");
+Subprocess::Subprocess(const std::vector<std::string>& argv, const std::filesystem::path& stderr_log) : command_(join(argv)) {
+  if (argv.empty()) throw UserError("no command given");
   const std::string executable = resolve_executable(argv[0]);
   std::vector<std::string> args = argv;
   std::vector<char*> c_argv;
@@ -58,24 +59,30 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv) : command_(join
 
   int out_pipe[2];
   int exec_pipe[2];  // reports a failed execv back to us: stays empty when exec succeeds (CLOEXEC)
-  if (::pipe2(out_pipe, O_CLOEXEC) != 0) throw std::runtime_error(system_error("cannot create a pipe"));
+  if (::pipe2(out_pipe, O_CLOEXEC) != 0) throw UserError(system_error("cannot create a pipe"));
   UniqueFd out_read(out_pipe[0]);
   UniqueFd out_write(out_pipe[1]);
-  if (::pipe2(exec_pipe, O_CLOEXEC) != 0) throw std::runtime_error(system_error("cannot create a pipe"));
+  if (::pipe2(exec_pipe, O_CLOEXEC) != 0) throw UserError(system_error("cannot create a pipe"));
   UniqueFd exec_read(exec_pipe[0]);
   UniqueFd exec_write(exec_pipe[1]);
-  stderr_file_ = UniqueFd(::memfd_create("dfc-conformance-stderr", MFD_CLOEXEC));
-  if (!stderr_file_.valid()) throw std::runtime_error(system_error("cannot create a buffer for the server's stderr"));
+  if (stderr_log.empty()) {
+    stderr_file_ = UniqueFd(::memfd_create("dfc-server-stderr", MFD_CLOEXEC));
+    if (!stderr_file_.valid()) throw UserError(system_error("cannot create a buffer for the stderr of '" + command_ + "'"));
+  } else {
+    // Read-write: stderr_tail() reads the log back with pread.
+    stderr_file_ = UniqueFd(::open(stderr_log.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+    if (!stderr_file_.valid()) throw UserError(system_error("cannot write the log '" + stderr_log.string() + "'"));
+  }
   UniqueFd null_in(::open("/dev/null", O_RDONLY | O_CLOEXEC));
   const pid_t parent = ::getpid();
 
   pid_ = ::fork();
-  if (pid_ < 0) throw std::runtime_error(system_error("cannot start '" + command_ + "': fork failed"));
+  if (pid_ < 0) throw UserError(system_error("cannot start '" + command_ + "': fork failed"));
   if (pid_ == 0) {
     // Child: async-signal-safe calls only.
     ::setpgid(0, 0);
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent) ::_exit(127);  // the checker died before prctl took effect
+    if (::getppid() != parent) ::_exit(127);  // the supervisor died before prctl took effect
     ::dup2(null_in.get(), STDIN_FILENO);
     ::dup2(out_write.get(), STDOUT_FILENO);
     ::dup2(stderr_file_.get(), STDERR_FILENO);
@@ -95,14 +102,14 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv) : command_(join
     int status = 0;
     ::waitpid(pid_, &status, 0);
     pid_ = -1;
-    throw std::runtime_error("cannot run '" + executable + "': " + std::strerror(exec_errno));
+    throw UserError("cannot run '" + executable + "': " + std::strerror(exec_errno));
   }
   stdout_ = std::move(out_read);
 }
 
-ChildProcess::~ChildProcess() { kill(); }
+Subprocess::~Subprocess() { kill(); }
 
-bool ChildProcess::fill_stdout(std::chrono::milliseconds timeout) {
+bool Subprocess::fill_stdout(std::chrono::milliseconds timeout) {
   if (stdout_eof_) return false;
   pollfd item{stdout_.get(), POLLIN, 0};
   const int ready = ::poll(&item, 1, static_cast<int>(std::max<std::int64_t>(timeout.count(), 0)));
@@ -117,7 +124,7 @@ bool ChildProcess::fill_stdout(std::chrono::milliseconds timeout) {
   return true;
 }
 
-std::optional<std::string> ChildProcess::read_line(std::chrono::milliseconds timeout) {
+std::optional<std::string> Subprocess::read_line(std::chrono::milliseconds timeout) {
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (true) {
     if (const auto newline = stdout_buffer_.find('\n'); newline != std::string::npos) {
@@ -130,7 +137,7 @@ std::optional<std::string> ChildProcess::read_line(std::chrono::milliseconds tim
   }
 }
 
-std::string ChildProcess::read_rest(std::chrono::milliseconds timeout) {
+std::string Subprocess::read_rest(std::chrono::milliseconds timeout) {
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (true) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
@@ -139,7 +146,12 @@ std::string ChildProcess::read_rest(std::chrono::milliseconds timeout) {
   return std::exchange(stdout_buffer_, {});
 }
 
-std::optional<int> ChildProcess::poll_exit() {
+Subprocess::StdoutHandover Subprocess::release_stdout() {
+  stdout_eof_ = true;
+  return {std::move(stdout_), std::exchange(stdout_buffer_, {})};
+}
+
+std::optional<int> Subprocess::poll_exit() {
   if (exit_status_ || pid_ < 0) return exit_status_;
   int status = 0;
   const pid_t done = ::waitpid(pid_, &status, WNOHANG);
@@ -147,13 +159,13 @@ std::optional<int> ChildProcess::poll_exit() {
   return exit_status_;
 }
 
-std::optional<int> ChildProcess::wait_exit(std::chrono::milliseconds timeout) {
+std::optional<int> Subprocess::wait_exit(std::chrono::milliseconds timeout) {
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (!poll_exit() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   return poll_exit();
 }
 
-void ChildProcess::kill() noexcept {
+void Subprocess::kill() noexcept {
   if (pid_ < 0 || exit_status_) return;
   ::kill(-pid_, SIGKILL);
   ::kill(pid_, SIGKILL);  // in case it left its process group
@@ -161,7 +173,7 @@ void ChildProcess::kill() noexcept {
   if (::waitpid(pid_, &status, 0) == pid_) exit_status_ = status;
 }
 
-std::string ChildProcess::stderr_tail(std::size_t max_lines) const {
+std::string Subprocess::stderr_tail(std::size_t max_lines) const {
   struct stat info {};
   if (::fstat(stderr_file_.get(), &info) != 0 || info.st_size <= 0) return {};
   constexpr off_t kWindow = 64 * 1024;
@@ -180,7 +192,6 @@ std::string ChildProcess::stderr_tail(std::size_t max_lines) const {
   return text.substr(begin);
 }
 
-std::string ChildProcess::describe_status(int status) { return describe_wait_status(status); }
+std::string Subprocess::describe_status(int status) { return describe_wait_status(status); }
 
-
-}  // namespace dfc::conformance
+}  // namespace dfc

@@ -1,11 +1,11 @@
 #pragma once
 // UniqueFd: owns one POSIX file descriptor and closes it when it goes away,
-// so that no early return or exception in the checker leaks a pipe end.
+// so that no early return or exception leaks a pipe end.
 #include <unistd.h>
 
 #include <utility>
 
-namespace dfc::conformance {
+namespace dfc {
 
 class UniqueFd {
  public:
@@ -34,4 +34,4 @@ class UniqueFd {
   int fd_ = -1;
 };
 
-}  // namespace dfc::conformance
+}  // namespace dfc
