@@ -5,7 +5,9 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/fdm/grid_snapshot.hpp"
 #include "dfc/fdm/interface_matching.hpp"
+#include "dfc/fdm/provider_interface.hpp"
 
 namespace dfc::fdm {
 
@@ -26,21 +28,6 @@ const char* role_name(CouplingRole role) {
     case CouplingRole::none: break;
   }
   return "none (standalone)";
-}
-
-void require_only(const std::vector<Array>& inputs, std::initializer_list<std::string_view> allowed, const std::string& who) {
-  for (const Array& array : inputs)
-    if (std::find(allowed.begin(), allowed.end(), array.name) == allowed.end()) {
-      std::string list;
-      for (const auto name : allowed) list += (list.empty() ? "'" : ", '") + std::string(name) + "'";
-      throw ProtocolError(ErrorCode::bad_array, "unexpected input array '" + array.name + "': " + who + " takes " +
-                                                    (list.empty() ? std::string("no input arrays") : list));
-    }
-}
-
-void require_finite(const std::vector<double>& values, std::string_view name) {
-  for (const double v : values)
-    if (!std::isfinite(v)) throw ProtocolError(ErrorCode::bad_array, "array '" + std::string(name) + "' contains a non-finite value");
 }
 
 Vec3 row(const std::vector<double>& values, std::size_t r) { return {values[3 * r], values[3 * r + 1], values[3 * r + 2]}; }
@@ -89,20 +76,7 @@ protocol::InterfaceMesh FdmBackend::interface_mesh() {
   if (model_->coupling.role != CouplingRole::provider)
     throw ProtocolError(ErrorCode::unsupported, std::string("get_interface needs coupling.role = \"provider\"; this fdm_server is ") +
                                                     role_name(model_->coupling.role));
-  const Mesh& mesh = s.mesh();
-  std::vector<std::int64_t> row_of(mesh.gridpoint_count(), -1);
-  protocol::InterfaceMesh out;
-  for (std::size_t r = 0; r < interface_gridpoints_.size(); ++r) {
-    const Index gp = interface_gridpoints_[r];
-    row_of[gp] = std::int64_t(r);
-    out.node_ids.push_back(std::int64_t(gp));
-    out.coordinates.insert(out.coordinates.end(), {mesh.points[gp].x(), mesh.points[gp].y(), mesh.points[gp].z()});
-  }
-  // Each quad (right-hand normal out of the continuum) becomes two triangles
-  // with the same orientation: (0,1,2) and (0,2,3).
-  for (const FaceQuad& q : mesh.face_group(model_->coupling.group))
-    out.facets.insert(out.facets.end(), {row_of[q[0]], row_of[q[1]], row_of[q[2]], row_of[q[0]], row_of[q[2]], row_of[q[3]]});
-  return out;
+  return provider_interface_mesh(s.mesh(), interface_gridpoints_, model_->coupling.group);
 }
 
 void FdmBackend::set_interface(const protocol::InterfaceMesh& mesh) {
@@ -157,16 +131,10 @@ protocol::AdvanceResult FdmBackend::advance_standalone(const protocol::AdvanceRe
 protocol::AdvanceResult FdmBackend::advance_provider(const protocol::AdvanceRequest& request) {
   Solver& s = solver();
   const auto n = std::int64_t(interface_gridpoints_.size());
-  require_only(request.inputs, {protocol::field::force, protocol::field::mass}, "a provider fdm_server");
-  const std::vector<double> force = protocol::require_f64(request.inputs, protocol::field::force, n, 3);
-  require_finite(force, protocol::field::force);
-  if (protocol::find_array(request.inputs, protocol::field::mass) != nullptr) {
-    const std::vector<double> mass = protocol::require_f64(request.inputs, protocol::field::mass, n, 0);
-    for (const double m : mass)
-      if (!(m >= 0.0) || !std::isfinite(m))
-        throw ProtocolError(ErrorCode::bad_array, "array 'mass' must hold finite masses >= 0 kg (f64 [" + std::to_string(n) + "])");
-    for (std::size_t r = 0; r < mass.size(); ++r) s.set_extra_mass(interface_gridpoints_[r], mass[r]);
-  }
+  const ProviderInputs received = read_provider_inputs(request.inputs, n, "a provider fdm_server");
+  const std::vector<double>& force = received.force;
+  if (received.mass)
+    for (std::size_t r = 0; r < received.mass->size(); ++r) s.set_extra_mass(interface_gridpoints_[r], (*received.mass)[r]);
   interface_force_sum_ = Vec3::Zero();
   for (std::size_t r = 0; r < interface_gridpoints_.size(); ++r) {
     s.set_external_force(interface_gridpoints_[r], row(force, r));
@@ -241,35 +209,10 @@ nlohmann::json FdmBackend::monitors() {
 
 std::vector<protocol::Array> FdmBackend::snapshot(std::string& kind) {
   const Solver& s = solver();
-  const Mesh& mesh = s.mesh();
   kind = "grid";
-  const auto n = std::int64_t(mesh.gridpoint_count());
-  const auto m = std::int64_t(mesh.zone_count());
-  const auto flatten = [](std::span<const Vec3> values) {
-    std::vector<double> out;
-    out.reserve(3 * values.size());
-    for (const Vec3& v : values) out.insert(out.end(), {v.x(), v.y(), v.z()});
-    return out;
-  };
-  std::vector<std::int64_t> zone_nodes;
-  zone_nodes.reserve(8 * mesh.zone_count());
-  for (const HexZone& zone : mesh.zones)
-    for (const int corner : kVtkFromFlac) zone_nodes.push_back(std::int64_t(zone[std::size_t(corner)]));
-  std::vector<double> zone_stress;
-  zone_stress.reserve(6 * mesh.zone_count());
-  for (Index z = 0; z < mesh.zone_count(); ++z) {
-    // SPEC.md §6.4: the XDMF Tensor6 order xx, xy, xz, yy, yz, zz, so ParaView
-    // labels the components right; the solver stores xx, yy, zz, xy, yz, zx.
-    const auto c = s.zone_stress(z).components();
-    zone_stress.insert(zone_stress.end(), {c[0], c[3], c[5], c[1], c[4], c[2]});
-  }
-  std::vector<Array> arrays;
-  arrays.push_back(Array::from_f64("node_position", {n, 3}, flatten(mesh.points)));
-  arrays.push_back(Array::from_f64("node_displacement", {n, 3}, flatten(s.displacements())));
-  arrays.push_back(Array::from_f64("node_velocity", {n, 3}, flatten(s.velocities())));
-  arrays.push_back(Array::from_i64("zone_nodes", {m, 8}, zone_nodes));
-  arrays.push_back(Array::from_f64("zone_stress", {m, 6}, zone_stress));
-  return arrays;
+  std::vector<Stress> zone_stress(s.mesh().zone_count());
+  for (Index z = 0; z < s.mesh().zone_count(); ++z) zone_stress[z] = s.zone_stress(z);
+  return grid_snapshot(s.mesh(), s.displacements(), s.velocities(), zone_stress);
 }
 
 }  // namespace dfc::fdm

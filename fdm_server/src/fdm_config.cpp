@@ -204,6 +204,8 @@ CouplingSettings read_coupling(ConfigReader cfg, const Mesh& mesh) {
 
 }  // namespace
 
+Material load_fdm_material(const nlohmann::json& material) { return read_material(material); }
+
 FdmModel load_fdm_model(const nlohmann::json& section) {
   ConfigReader root(section, "");
   Mesh mesh = read_mesh(root.child("mesh"));

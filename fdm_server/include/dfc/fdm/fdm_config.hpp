@@ -52,6 +52,11 @@ struct FdmModel {
 /// conditions and initial stress. Throws dfc::ConfigError naming the key path.
 [[nodiscard]] FdmModel load_fdm_model(const nlohmann::json& section);
 
+/// Parses the "material" object of the section alone (a model and its
+/// parameters, or a preset with overrides), e.g. for element tests. Throws
+/// dfc::ConfigError with key paths under "material".
+[[nodiscard]] Material load_fdm_material(const nlohmann::json& material);
+
 /// The --help description of the section, including the constitutive models
 /// of the registry with their parameters and units.
 [[nodiscard]] std::string fdm_config_help();

@@ -68,6 +68,10 @@ class Solver {
   void set_extra_mass(Index gp, double mass);
   /// Holds the velocity of `gp` at `velocity` (all components) from the next step on.
   void prescribe_velocity(Index gp, const Vec3& velocity);
+  /// `v` with the components that the fixed and roller conditions of `gp` hold
+  /// at zero removed (an orthogonal projection onto the free directions). A
+  /// static solver on the same mesh uses it to apply the same supports.
+  [[nodiscard]] Vec3 constrained(Index gp, Vec3 v) const;
   /// Zeroes all gridpoint velocities and displacements, keeping stresses and
   /// model history (FLAC's "initialize displacement 0" after an equilibrium
   /// stage, so that later displacements are those of the next stage).
@@ -113,7 +117,6 @@ class Solver {
   };
   [[nodiscard]] Vec3 gathered_tetrahedron_force(Index gp) const;
   [[nodiscard]] GridpointForces gridpoint_forces(Index gp) const;
-  [[nodiscard]] Vec3 constrained(Index gp, Vec3 v) const;
   void update_inertial_masses(double dt);
   void gridpoint_pass(double dt);
   void zone_pass(double dt);

@@ -1,0 +1,19 @@
+#pragma once
+// The "grid" snapshot arrays of SPEC.md §6.4 for a state on an fdm::Mesh,
+// shared by fdm_server and the reference continua built on the same mesh.
+#include <span>
+#include <vector>
+
+#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/fdm/mesh.hpp"
+#include "dfc/protocol/array.hpp"
+
+namespace dfc::fdm {
+
+/// node_position, node_displacement, node_velocity (f64 [N,3]), zone_nodes
+/// (i64 [M,8], VTK hexahedron order) and zone_stress (f64 [M,6], XDMF Tensor6
+/// order xx, xy, xz, yy, yz, zz).
+[[nodiscard]] std::vector<protocol::Array> grid_snapshot(const Mesh& mesh, std::span<const Vec3> displacement,
+                                                         std::span<const Vec3> velocity, std::span<const Stress> zone_stress);
+
+}  // namespace dfc::fdm
