@@ -11,8 +11,10 @@
 namespace dfc::dem {
 
 bool Simulation::compute_contact_forces(double dt) {
-  bool excessive = std::visit([&](const auto& law) { return evaluate_pair_contacts(law, particles_, pairs_, outputs_, dt, threads_); },
-                              settings_.particle_law.law);
+  bool excessive = std::visit([&](const auto& law) {
+    if (cell_) return evaluate_pair_contacts(law, particles_, pairs_, outputs_, dt, threads_, PeriodicSpace(*cell_));
+    return evaluate_pair_contacts(law, particles_, pairs_, outputs_, dt, threads_);
+  }, settings_.particle_law.law);
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const std::size_t offset = wall_offsets_[w];
     select_wall_contacts(walls_[w], particles_, wall_contacts_[w], std::span(outputs_.point).subspan(offset, wall_contacts_[w].size()), threads_);

@@ -25,10 +25,11 @@ void WallContacts::assign(std::span<const std::pair<std::uint32_t, std::uint32_t
   selected.assign(n, 0);
 }
 
-void ContactOutputs::resize(std::size_t n, bool with_couple) {
+void ContactOutputs::resize(std::size_t n, bool with_couple, std::size_t periodic_pairs) {
   force.assign(n, Vec3{});
   point.assign(n, Vec3{});
   couple.assign(with_couple ? n : 0, Vec3{});
+  shift.assign(periodic_pairs, Vec3{});
 }
 
 Incidence build_incidence(std::size_t particle_count, const PairContacts& pairs, std::span<const WallContacts* const> walls,

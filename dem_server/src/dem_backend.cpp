@@ -5,6 +5,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/measurements.hpp"
 
 namespace dfc::dem {
@@ -39,11 +40,30 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
     const auto& walls = sim().walls();
     ucs_axis_ = platen_axis(walls[config_.ucs->top_wall].vertices, walls[config_.ucs->bottom_wall].vertices);
   }
-  return {{"dt_suggested", model_.dt},
-          {"dt_max", model_.dt_critical},
-          {"particles", sim().particles().size()},
-          {"particles_removed_by_walls", model_.removed_particles},
-          {"contact_law", config_.contact.info->keyword}};
+  cell_servo_.reset();
+  nlohmann::json info = {{"dt_suggested", model_.dt},
+                         {"dt_max", model_.dt_critical},
+                         {"particles", sim().particles().size()},
+                         {"particles_removed_by_walls", model_.removed_particles},
+                         {"contact_law", config_.contact.info->keyword}};
+  if (config_.periodic) {
+    cell_servo_ = make_servo(config_.periodic->loading, config_.periodic->servo_gain, model_.max_strain_rate);
+    cell_reference_length_ = sim().periodic_cell()->length();
+  }
+  if (const auto& prep = model_.preparation) {
+    nlohmann::json p = {{"consolidated", prep->consolidated},
+                        {"consolidation_steps", prep->consolidation_steps},
+                        {"stress_relative_error", prep->stress_error},
+                        {"stress_pa", to_json(prep->stress)},
+                        {"porosity", prep->porosity},
+                        {"bonds_installed", prep->bonds_installed}};
+    if (prep->expansion) {
+      p["porosity_after_expansion"] = prep->expansion->porosity_geometric;
+      p["expansion_steps"] = prep->expansion->steps;
+    }
+    info["preparation"] = p;
+  }
+  return info;
 }
 
 Simulation& DemBackend::sim() {
@@ -127,8 +147,10 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
   Vec3 reaction_sum;
+  Vec3 cell_stress_sum;
   for (std::int64_t step = 0; step < request.n_steps; ++step) {
-    s.step(request.dt);
+    if (cell_servo_) cell_stress_sum += servo_step(s, *cell_servo_, request.dt).diagonal();
+    else s.step(request.dt);
     for (std::size_t w = 0; w < walls.size(); ++w) {
       wall_force_sum[w] += walls[w].force;
       wall_moment_sum[w] += walls[w].moment;
@@ -152,6 +174,11 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   if (ucs_axis_)
     averages_["axial_stress_pa"] = axial_stress(*ucs_axis_, inv_n * wall_force_sum[config_.ucs->top_wall],
                                                 inv_n * wall_force_sum[config_.ucs->bottom_wall], config_.ucs->area);
+  if (cell_servo_) {
+    averages_["cell_stress_xx_pa"] = inv_n * cell_stress_sum.x;
+    averages_["cell_stress_yy_pa"] = inv_n * cell_stress_sum.y;
+    averages_["cell_stress_zz_pa"] = inv_n * cell_stress_sum.z;
+  }
   if (model_.pile_wall) averages_["pile_force_n"] = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
   if (interface_wall_) {
     double power = 0.0;
@@ -191,6 +218,20 @@ nlohmann::json DemBackend::monitors() {
     const Wall& bottom = s.walls()[config_.ucs->bottom_wall];
     out["axial_strain"] = axial_strain(*ucs_axis_, platen_separation(*ucs_axis_, top.vertices, bottom.vertices));
     if (!out.contains("axial_stress_pa")) out["axial_stress_pa"] = axial_stress(*ucs_axis_, top.force, bottom.force, config_.ucs->area);
+  }
+  if (const auto& cell = s.periodic_cell()) {
+    const Vec3 l = cell->length();
+    const Vec3& l0 = cell_reference_length_;
+    out["cell_strain_xx"] = (l0.x - l.x) / l0.x;
+    out["cell_strain_yy"] = (l0.y - l.y) / l0.y;
+    out["cell_strain_zz"] = (l0.z - l.z) / l0.z;
+    out["porosity"] = cell_porosity(s.particles(), *cell);
+    if (!out.contains("cell_stress_xx_pa")) {
+      const Vec3 stress = measure_cell_stress(s).diagonal();
+      out["cell_stress_xx_pa"] = stress.x;
+      out["cell_stress_yy_pa"] = stress.y;
+      out["cell_stress_zz_pa"] = stress.z;
+    }
   }
   if (model_.pile_wall) {
     out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());

@@ -68,7 +68,7 @@ double read_scale_factor(ConfigReader& section) {
 
 ParticleConfig read_particles(ConfigReader cfg, double scale_factor) {
   ParticleConfig p;
-  p.generator = cfg.choice("generator", {"lattice", "list"});
+  p.generator = cfg.choice("generator", {"lattice", "list", "radius_expansion"});
   p.density = cfg.positive("density_kg_m3");
   if (p.generator == "lattice") {
     p.lattice.radius_min = scale_factor * cfg.positive("radius_min_m");
@@ -81,6 +81,10 @@ ParticleConfig read_particles(ConfigReader cfg, double scale_factor) {
     p.lattice.region = read_region(cfg.child("region"));
     p.spheres = generate_lattice_bed(p.lattice);
     if (p.spheres.empty()) cfg.fail("region", "no sphere fits: the region must be at least 2 radius_max_m x spacing_factor wide in every direction");
+  } else if (p.generator == "radius_expansion") {
+    p.expansion = read_radius_expansion(cfg);  // placed once the periodic cell is known (parse_dem_config)
+    p.expansion.radius_min *= scale_factor;    // the cell stays: upscaling means fewer, larger spheres
+    p.expansion.radius_max *= scale_factor;
   } else {
     if (scale_factor != 1.0)
       cfg.fail("generator", "\"list\" spheres are taken as given, so upscaling.scale_factor must be 1 with it; give the upscaled radii in the list or use a generator");
@@ -286,6 +290,27 @@ TimestepConfig read_timestep(ConfigReader& root) {
   return t;
 }
 
+/// Radius expansion: places the spheres in the cell; every periodic edge must
+/// hold 2 (2 r_max + reach) with the final radii.
+void read_periodic_particles(DemConfig& c, const std::string& periodic_path) {
+  ParticleConfig& p = c.particles;
+  double r_max = 0.0;
+  if (p.generator == "radius_expansion") {
+    try {
+      ExpansionPacking packing = place_for_radius_expansion(p.expansion, c.periodic->cell);
+      p.spheres = std::move(packing.spheres);
+      p.final_radius = std::move(packing.final_radius);
+    } catch (const UserError& e) {
+      throw ConfigError("particles.multiplier", e.what());
+    }
+    for (const double r : p.final_radius) r_max = std::max(r_max, r);
+  } else {
+    for (const auto& s : p.spheres) r_max = std::max(r_max, s.radius);
+  }
+  const double skin = c.skin > 0.0 ? c.skin : 0.2 * r_max;
+  check_periodic_width(*c.periodic, r_max, std::max(skin, c.contact.bond_gap()), periodic_path);
+}
+
 }  // namespace
 
 DemConfig parse_dem_config(const nlohmann::json& section) {
@@ -308,6 +333,15 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
     else neighbour->accept("skin_m");
     neighbour->finish();
   }
+  if (auto periodic = cfg.optional_child("periodic")) {
+    const std::string path = periodic->path().empty() ? "" : periodic->path() + ".";
+    c.periodic = read_periodic_config(std::move(*periodic));
+    read_periodic_particles(c, path);
+  } else {
+    cfg.accept("periodic");
+    if (c.particles.generator == "radius_expansion")
+      throw ConfigError("particles.generator", "\"radius_expansion\" fills a periodic cell: add a \"periodic\" block with min_m and max_m");
+  }
   const auto box = bounding_box(c.particles.spheres);
   if (cfg.has("walls")) {
     std::set<std::string> names;
@@ -326,7 +360,7 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
 std::string dem_config_help() {
   return R"((SI units; unknown keys are errors)
   particles       (required) the spheres
-    generator       "lattice" | "list"
+    generator       "lattice" | "list" | "radius_expansion" (needs "periodic")
     density_kg_m3   particle density (required)
     lattice: radius_min_m, radius_max_m (required), spacing_factor (1.05: lattice pitch / 2 radius_max_m),
              arrangement ("cubic" | "fcc": close-packed layers, a denser start that settles faster),
@@ -334,6 +368,10 @@ std::string dem_config_help() {
                {"type":"box", "min_m":[x,y,z], "max_m":[x,y,z]} or
                {"type":"cylinder", "radius_m", "z_min_m", "z_max_m", "axis_xy_m":[0,0]}
     list:    spheres: [[x, y, z, radius], ...]
+    radius_expansion (docs/dem_periodic.md): radius_min_m, radius_max_m (required; final radii, uniform; an upscaled
+             run multiplies them by S), porosity (required: target in (0,1), met exactly after the last stage),
+             multiplier (1.6: final/initial radius), stages (10), relax_steps (1000 cycles after each stage),
+             seed (1); spheres are placed at random without overlap at radius/multiplier in the periodic cell
   upscaling       {"scale_factor": S} particle upscaling (default S = 1): every generated radius is
                   multiplied by S and every contact-law parameter follows its law's declared rule (value x
                   S^exponent, see "upscaling by S" below); the domain, walls and strain rates stay as given
@@ -357,8 +395,7 @@ std::string dem_config_help() {
                   adds the monitors axial_stress_pa (platen force / area, compression positive, averaged over
                   the advance and over both platens) and axial_strain ((H0 - H)/H0, H the platen separation)
   threads         OpenMP threads (0: OpenMP default)
-Contact-law registry:
-)" + describe_contact_laws();
+)" + periodic_config_help() + "Contact-law registry:\n" + describe_contact_laws();
 }
 
 }  // namespace dfc::dem

@@ -6,8 +6,13 @@
 
 namespace dfc::dem {
 
-MotionReport integrate_motion(ParticleStore& p, const Incidence& incidence, const ContactOutputs& contacts,
-                              std::span<const Vec3> reference_positions, const MotionSettings& s, int threads) {
+namespace {
+
+/// Periodic: a pair's second body takes its lever arm from its image next to
+/// the first body (contacts.shift); compiled out of the open-space loop.
+template <bool Periodic>
+MotionReport integrate(ParticleStore& p, const Incidence& incidence, const ContactOutputs& contacts, std::span<const Vec3> reference_positions,
+                       const MotionSettings& s, int threads) {
   const auto n = static_cast<std::int64_t>(p.size());
   const bool with_couple = !contacts.couple.empty();
   const double dt = s.dt;
@@ -27,7 +32,12 @@ MotionReport integrate_motion(ParticleStore& p, const Incidence& incidence, cons
       const double sign = 1.0 - 2.0 * double(entry & 1u);
       const Vec3 f = sign * contacts.force[c];
       force += f;
-      moment += cross(contacts.point[c] - xi, f);
+      if constexpr (Periodic) {
+        const Vec3 arm = (entry & 1u) != 0 ? contacts.point[c] - (xi + contacts.shift[c]) : contacts.point[c] - xi;
+        moment += cross(arm, f);
+      } else {
+        moment += cross(contacts.point[c] - xi, f);
+      }
       if (with_couple) moment += sign * contacts.couple[c];
     }
     p.force[i] = force;
@@ -46,6 +56,14 @@ MotionReport integrate_motion(ParticleStore& p, const Incidence& incidence, cons
     finite = finite && std::isfinite(d2) && is_finite(w);
   }
   return {max_d2, finite};
+}
+
+}  // namespace
+
+MotionReport integrate_motion(ParticleStore& p, const Incidence& incidence, const ContactOutputs& contacts,
+                              std::span<const Vec3> reference_positions, const MotionSettings& s, int threads) {
+  if (!contacts.shift.empty()) return integrate<true>(p, incidence, contacts, reference_positions, s, threads);
+  return integrate<false>(p, incidence, contacts, reference_positions, s, threads);
 }
 
 }  // namespace dfc::dem

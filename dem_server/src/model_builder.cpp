@@ -27,12 +27,28 @@ bool inside_pile(const GeneratedSphere& s, const CylinderGeometry& g) {
   return dx * dx + dy * dy < g.radius * g.radius && s.centre.z > g.tip_z && s.centre.z < g.tip_z + g.length;
 }
 
+/// s, critical step of these particles with the particle, wall_contact
+/// (the coupling wall arrives later but counts now) and wall laws.
+double critical_step(const ParticleStore& particles, const DemConfig& c, const std::vector<Wall>& walls) {
+  double r_max = 0.0;
+  for (const double r : particles.radius) r_max = std::max(r_max, r);
+  std::vector<StiffnessBound> laws{c.contact.stiffness_bound(r_max), c.wall_contact.stiffness_bound(r_max)};
+  for (const auto& w : walls) laws.push_back(w.law.stiffness_bound(r_max));
+  return critical_timestep(particles, laws);
+}
+
 }  // namespace
 
 DemModel build_model(const DemConfig& c) {
   DemModel model;
-  model.simulation = std::make_unique<Simulation>(
-      SimulationSettings{.particle_law = c.contact, .gravity = c.gravity, .local_damping = c.local_damping, .skin = c.skin, .threads = c.threads});
+  // A prepared sample is bonded after its preparation (PFC order), not at the first rebuild.
+  const bool prepared = c.periodic && (c.particles.generator == "radius_expansion" || c.periodic->consolidation);
+  model.simulation = std::make_unique<Simulation>(SimulationSettings{.particle_law = c.contact,
+                                                                     .gravity = c.gravity,
+                                                                     .local_damping = c.local_damping,
+                                                                     .skin = c.skin,
+                                                                     .threads = c.threads,
+                                                                     .install_bonds_at_start = !prepared});
   Simulation& sim = *model.simulation;
 
   // 1. Rigid walls and the pile.
@@ -54,13 +70,16 @@ DemModel build_model(const DemConfig& c) {
     sim.add_sphere(std::int64_t(k), s.centre, s.radius, c.particles.density);
   }
   if (sim.particles().size() == 0) throw ConfigError("particles", "every sphere overlaps a wall or the pile; nothing is left to simulate");
+  if (c.periodic) {
+    try {
+      sim.set_periodic_cell(c.periodic->cell);
+    } catch (const UserError& e) {
+      throw ConfigError("periodic.max_m", e.what());
+    }
+  }
 
   // 3. Time step: the coupling wall (wall_contact) arrives later but counts now.
-  double r_max = 0.0;
-  for (const double r : sim.particles().radius) r_max = std::max(r_max, r);
-  std::vector<StiffnessBound> laws{c.contact.stiffness_bound(r_max), c.wall_contact.stiffness_bound(r_max)};
-  for (const auto& w : sim.walls()) laws.push_back(w.law.stiffness_bound(r_max));
-  model.dt_critical = critical_timestep(sim.particles(), laws);
+  model.dt_critical = critical_step(sim.particles(), c, sim.walls());
   if (c.timestep.dt) {
     if (*c.timestep.dt > model.dt_critical) {
       std::ostringstream msg;
@@ -71,6 +90,24 @@ DemModel build_model(const DemConfig& c) {
     model.dt = *c.timestep.dt;
   } else {
     model.dt = c.timestep.fraction_of_critical * model.dt_critical;
+  }
+
+  // 4. Preparation of a periodic REV. The critical step above used the start
+  // radii of a radius expansion; the grown packing's step is taken again.
+  if (c.periodic) {
+    model.max_strain_rate = c.periodic->max_strain_rate.value_or(1e-4 / model.dt);
+    if (prepared) {
+      const double fraction = c.timestep.dt ? *c.timestep.dt / model.dt_critical : c.timestep.fraction_of_critical;
+      if (c.particles.generator == "radius_expansion") {
+        // Radii grow by the multiplier: the stable step of the final packing, for the consolidation.
+        ParticleStore grown = sim.particles();
+        for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, c.particles.final_radius[std::size_t(grown.id[i])]);
+        model.dt_critical = critical_step(grown, c, sim.walls());
+        model.dt = c.timestep.dt ? std::min(*c.timestep.dt, model.dt_critical) : fraction * model.dt_critical;
+        model.max_strain_rate = c.periodic->max_strain_rate.value_or(1e-4 / model.dt);
+      }
+      model.preparation = prepare_sample(sim, *c.periodic, c.particles.final_radius, c.particles.expansion, fraction, model.dt, model.max_strain_rate);
+    }
   }
   return model;
 }

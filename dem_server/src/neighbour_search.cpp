@@ -1,6 +1,7 @@
 #include "dfc/dem/neighbour_search.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -19,29 +20,28 @@ std::array<std::int64_t, 3> CellGrid::cell_of(const Vec3& x) const noexcept {
   return {axis(x.x, origin.x, dims[0]), axis(x.y, origin.y, dims[1]), axis(x.z, origin.z, dims[2])};
 }
 
-CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, std::vector<std::uint32_t>& order) {
+namespace {
+
+/// The grid over [lo, lo + extent] (open axes: cells_along = floor(e/size)+1;
+/// periodic axes: floor(L/size) cells spanning the cell exactly), and the
+/// counting sort of the slots by cell (stable, hence deterministic).
+CellGrid build_grid(std::span<const Vec3> positions, double min_cell_size, const Vec3& lo, const Vec3& extent, std::array<bool, 3> periodic,
+                    std::vector<std::uint32_t>& order) {
   CellGrid grid;
-  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  Vec3 hi = -lo;
-  for (const auto& x : positions) {
-    if (!is_finite(x)) throw SolverError("a particle position is not finite; the simulation has become unstable");
-    lo = {std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z)};
-    hi = {std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z)};
-  }
-  if (positions.empty()) lo = hi = Vec3{};
   grid.origin = lo;
+  grid.periodic = periodic;
   grid.cell_size = min_cell_size > 0.0 ? min_cell_size : 1.0;  // no particles with size: any cell will do
-  const Vec3 extent = hi - lo;
   const double max_cells = 4.0 * double(positions.size()) + 64.0;
-  auto cells_along = [&](double e) { return std::floor(e / grid.cell_size) + 1.0; };
-  double total = cells_along(extent.x) * cells_along(extent.y) * cells_along(extent.z);
+  auto cells_along = [&](double e, bool wraps) { return wraps ? std::max(1.0, std::floor(e / grid.cell_size)) : std::floor(e / grid.cell_size) + 1.0; };
+  auto total_cells = [&] { return cells_along(extent.x, periodic[0]) * cells_along(extent.y, periodic[1]) * cells_along(extent.z, periodic[2]); };
+  double total = total_cells();
   while (total > max_cells) {  // sparse or exploded packing: coarser cells
     grid.cell_size *= std::max(1.01, std::cbrt(total / max_cells));
-    total = cells_along(extent.x) * cells_along(extent.y) * cells_along(extent.z);
+    total = total_cells();
   }
-  grid.dims = {std::int64_t(cells_along(extent.x)), std::int64_t(cells_along(extent.y)), std::int64_t(cells_along(extent.z))};
+  grid.dims = {std::int64_t(cells_along(extent.x, periodic[0])), std::int64_t(cells_along(extent.y, periodic[1])),
+               std::int64_t(cells_along(extent.z, periodic[2]))};
 
-  // Counting sort of the slots by cell (stable, hence deterministic).
   std::vector<std::uint32_t> cell(positions.size());
   grid.cell_start.assign(grid.cell_count() + 1, 0);
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -56,47 +56,95 @@ CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, 
   return grid;
 }
 
-namespace {
-
-/// Calls visit(j) for every slot j > i in the 27 cells around particle i.
-template <class Visit>
-void for_each_later_neighbour(const CellGrid& grid, const Vec3& xi, std::uint32_t i, Visit&& visit) {
-  const auto c = grid.cell_of(xi);
-  for (std::int64_t dz = -1; dz <= 1; ++dz) {
-    const std::int64_t z = c[2] + dz;
-    if (z < 0 || z >= grid.dims[2]) continue;
-    for (std::int64_t dy = -1; dy <= 1; ++dy) {
-      const std::int64_t y = c[1] + dy;
-      if (y < 0 || y >= grid.dims[1]) continue;
-      for (std::int64_t dx = -1; dx <= 1; ++dx) {
-        const std::int64_t x = c[0] + dx;
-        if (x < 0 || x >= grid.dims[0]) continue;
-        const std::size_t cell = grid.linear_index(x, y, z);
-        // Slots are sorted by cell, so whole cells before i's own are skipped by j > i.
-        for (std::uint32_t j = std::max(grid.cell_start[cell], i + 1); j < grid.cell_start[cell + 1]; ++j) visit(j);
-      }
-    }
+/// Bounding box of the positions (throws SolverError on a non-finite one).
+std::pair<Vec3, Vec3> position_bounds(std::span<const Vec3> positions) {
+  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  Vec3 hi = -lo;
+  for (const auto& x : positions) {
+    if (!is_finite(x)) throw SolverError("a particle position is not finite; the simulation has become unstable");
+    lo = {std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z)};
+    hi = {std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z)};
   }
+  if (positions.empty()) lo = hi = Vec3{};
+  return {lo, hi};
 }
 
 }  // namespace
 
-void find_pair_candidates(const CellGrid& grid, const ParticleStore& particles, double skin, int threads, std::vector<std::uint32_t>& first,
-                          std::vector<std::uint32_t>& second) {
+CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, std::vector<std::uint32_t>& order) {
+  const auto [lo, hi] = position_bounds(positions);
+  return build_grid(positions, min_cell_size, lo, hi - lo, {false, false, false}, order);
+}
+
+CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, const PeriodicCell& cell, std::vector<std::uint32_t>& order) {
+  auto [lo, hi] = position_bounds(positions);
+  // Periodic axes span the cell; open axes the particles (they may leave the box there).
+  const auto pick = [&](int a, double open_value, double cell_value) { return cell.periodic[std::size_t(a)] ? cell_value : open_value; };
+  lo = {pick(0, lo.x, cell.lo.x), pick(1, lo.y, cell.lo.y), pick(2, lo.z, cell.lo.z)};
+  hi = {pick(0, hi.x, cell.hi.x), pick(1, hi.y, cell.hi.y), pick(2, hi.z, cell.hi.z)};
+  CellGrid grid = build_grid(positions, min_cell_size, lo, hi - lo, cell.periodic, order);
+  grid.space = PeriodicSpace(cell);
+  return grid;
+}
+
+namespace {
+
+/// Calls visit(j) for every slot j > i in the 27 cells around particle i.
+/// Periodic: indices on periodic axes wrap, and a cell reached twice (an axis
+/// of 1 or 2 cells, where -1 and +1 are the same cell) is visited once, so
+/// every pair is found once. Cells are visited in increasing index either way.
+template <bool Periodic, class Visit>
+void for_each_later_neighbour(const CellGrid& grid, const Vec3& xi, std::uint32_t i, Visit&& visit) {
+  const auto c = grid.cell_of(xi);
+  std::array<std::size_t, 27> cells{};
+  std::size_t count = 0;
+  const auto index = [&](std::size_t a, std::int64_t k) {
+    if constexpr (Periodic) {
+      if (grid.periodic[a]) return ((k % grid.dims[a]) + grid.dims[a]) % grid.dims[a];
+    }
+    return k;
+  };
+  for (std::int64_t dz = -1; dz <= 1; ++dz) {
+    const std::int64_t z = index(2, c[2] + dz);
+    if (z < 0 || z >= grid.dims[2]) continue;
+    for (std::int64_t dy = -1; dy <= 1; ++dy) {
+      const std::int64_t y = index(1, c[1] + dy);
+      if (y < 0 || y >= grid.dims[1]) continue;
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        const std::int64_t x = index(0, c[0] + dx);
+        if (x < 0 || x >= grid.dims[0]) continue;
+        cells[count++] = grid.linear_index(x, y, z);
+      }
+    }
+  }
+  if constexpr (Periodic) {
+    std::sort(cells.begin(), cells.begin() + std::ptrdiff_t(count));
+    count = std::size_t(std::unique(cells.begin(), cells.begin() + std::ptrdiff_t(count)) - cells.begin());
+  }
+  // Slots are sorted by cell, so whole cells before i's own are skipped by j > i.
+  for (std::size_t k = 0; k < count; ++k)
+    for (std::uint32_t j = std::max(grid.cell_start[cells[k]], i + 1); j < grid.cell_start[cells[k] + 1]; ++j) visit(j);
+}
+
+/// Two passes (count, then fill at prefix-summed offsets): parallel, yet the
+/// list is the same as a serial search would produce. `Space` gives the branch
+/// vector (OpenSpace or the grid's PeriodicSpace).
+template <bool Periodic, class Space>
+void collect_pairs(const CellGrid& grid, const Space& space, const ParticleStore& particles, double skin, int threads,
+                   std::vector<std::uint32_t>& first, std::vector<std::uint32_t>& second) {
   const auto n = static_cast<std::int64_t>(particles.size());
   const auto& x = particles.position;
   const auto& r = particles.radius;
   const auto near = [&](std::uint32_t i, std::uint32_t j) {
     const double reach = r[i] + r[j] + skin;
-    return norm2(x[j] - x[i]) < reach * reach;
+    return norm2(space.branch(x[i], x[j])) < reach * reach;
   };
-  // Two passes (count, then fill at prefix-summed offsets): parallel, yet the
-  // list is the same as a serial search would produce.
+  const auto neighbours = [&](std::uint32_t i, auto&& visit) { for_each_later_neighbour<Periodic>(grid, x[i], i, visit); };
   std::vector<std::uint32_t> offset(std::size_t(n) + 1, 0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(n >= min_parallel_items)
   for (std::int64_t i = 0; i < n; ++i) {
     std::uint32_t count = 0;
-    for_each_later_neighbour(grid, x[std::size_t(i)], std::uint32_t(i), [&](std::uint32_t j) { count += near(std::uint32_t(i), j) ? 1u : 0u; });
+    neighbours(std::uint32_t(i), [&](std::uint32_t j) { count += near(std::uint32_t(i), j) ? 1u : 0u; });
     offset[std::size_t(i) + 1] = count;
   }
   for (std::size_t i = 0; i < std::size_t(n); ++i) offset[i + 1] += offset[i];
@@ -105,13 +153,21 @@ void find_pair_candidates(const CellGrid& grid, const ParticleStore& particles, 
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(n >= min_parallel_items)
   for (std::int64_t i = 0; i < n; ++i) {
     std::uint32_t at = offset[std::size_t(i)];
-    for_each_later_neighbour(grid, x[std::size_t(i)], std::uint32_t(i), [&](std::uint32_t j) {
+    neighbours(std::uint32_t(i), [&](std::uint32_t j) {
       if (!near(std::uint32_t(i), j)) return;
       first[at] = std::uint32_t(i);
       second[at] = j;
       ++at;
     });
   }
+}
+
+}  // namespace
+
+void find_pair_candidates(const CellGrid& grid, const ParticleStore& particles, double skin, int threads, std::vector<std::uint32_t>& first,
+                          std::vector<std::uint32_t>& second) {
+  if (grid.periodic[0] || grid.periodic[1] || grid.periodic[2]) collect_pairs<true>(grid, grid.space, particles, skin, threads, first, second);
+  else collect_pairs<false>(grid, OpenSpace{}, particles, skin, threads, first, second);
 }
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> find_facet_candidates(const CellGrid& grid, const ParticleStore& particles,

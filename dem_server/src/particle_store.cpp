@@ -23,6 +23,14 @@ void ParticleStore::add_sphere(std::int64_t particle_id, Vec3 x, double r, doubl
   inertia.push_back(0.4 * m * r * r);  // solid sphere, I = 2/5 m r^2
 }
 
+void ParticleStore::set_radius(std::size_t slot, double r) {
+  if (!(r > 0.0)) throw UserError("particle " + std::to_string(id.at(slot)) + " needs a positive radius (got " + std::to_string(r) + " m)");
+  const double scale = r / radius[slot];
+  radius[slot] = r;
+  mass[slot] *= scale * scale * scale;          // same density
+  inertia[slot] = 0.4 * mass[slot] * r * r;     // solid sphere, I = 2/5 m r^2
+}
+
 namespace {
 template <class T>
 void permute_field(std::vector<T>& field, std::span<const std::uint32_t> new_to_old) {

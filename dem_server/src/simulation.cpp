@@ -14,6 +14,14 @@
 
 namespace dfc::dem {
 
+namespace {
+double largest_radius(const ParticleStore& p) {
+  double r_max = 0.0;
+  for (const double r : p.radius) r_max = std::max(r_max, r);
+  return r_max;
+}
+}  // namespace
+
 Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)) {
   if (settings_.particle_law.info == nullptr) throw UserError("the simulation needs a particle contact law");
   if (!(settings_.local_damping >= 0.0 && settings_.local_damping < 1.0)) throw UserError("local damping must be in [0, 1)");
@@ -54,17 +62,51 @@ void Simulation::set_vertex_velocities(std::size_t wall, std::span<const Vec3> v
 }
 
 double Simulation::critical_timestep() const {
-  double r_max = 0.0;
-  for (const double r : particles_.radius) r_max = std::max(r_max, r);
+  const double r_max = largest_radius(particles_);
   std::vector<StiffnessBound> laws{settings_.particle_law.stiffness_bound(r_max)};
   for (const auto& w : walls_) laws.push_back(w.law.stiffness_bound(r_max));
   return dfc::dem::critical_timestep(particles_, laws);
 }
 
+void Simulation::install_bonds_now() noexcept {
+  if (bonds_installed_) return;
+  install_requested_ = true;
+  stale_ = true;
+}
+
+void Simulation::set_periodic_cell(const PeriodicCell& cell) {
+  const Vec3 l = cell.length();
+  if (!(l.x > 0.0 && l.y > 0.0 && l.z > 0.0)) throw UserError("the periodic cell needs hi > lo on every axis");
+  cell_ = cell;
+  stale_ = true;
+  const double r_max = largest_radius(particles_);
+  check_cell_width(2.0 * r_max + (settings_.skin > 0.0 ? settings_.skin : 0.2 * r_max));
+}
+
+void Simulation::set_cell_strain_rate(const Vec3& rate) {
+  if (!cell_) throw UserError("a cell strain rate needs a periodic cell");
+  cell_->strain_rate = rate;
+}
+
+void Simulation::check_cell_width(double reach) const {
+  if (!cell_) return;
+  const Vec3 l = cell_->length();
+  const double edge[3] = {l.x, l.y, l.z};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!cell_->periodic[a] || edge[a] >= 2.0 * reach) continue;
+    std::ostringstream msg;
+    msg << "the periodic cell is " << edge[a] << " m long along " << "xyz"[a] << " but must be at least 2 (2 r_max + skin) = " << 2.0 * reach
+        << " m so that the minimum image of every contact is unique; use a larger cell or smaller particles";
+    throw UserError(msg.str());
+  }
+}
+
 void Simulation::rebuild() {
-  double r_max = 0.0;
-  for (const double r : particles_.radius) r_max = std::max(r_max, r);
+  const double r_max = largest_radius(particles_);
+  r_max_ = r_max;
   skin_ = settings_.skin > 0.0 ? settings_.skin : 0.2 * r_max;
+  if (cell_)
+    for (auto& x : particles_.position) x = cell_->wrap(x);  // history is keyed by ids: wrapping keeps it
 
   // 1. Keep the history of current contacts under stable keys.
   const HistoryArchive pair_archive = archive_history(pairs_, particles_);
@@ -73,10 +115,12 @@ void Simulation::rebuild() {
 
   // 2. Cell grid; re-sort the particles by cell so that neighbours share cache lines.
   // Installing bonds needs every pair within the bonding gap, which may exceed the skin.
-  const bool install = settings_.particle_law.bonded() && !bonds_installed_;
+  const bool install = settings_.particle_law.bonded() && !bonds_installed_ && (settings_.install_bonds_at_start || install_requested_);
   const double search = install ? std::max(skin_, 1.001 * settings_.particle_law.bond_gap()) : skin_;
   std::vector<std::uint32_t> order;
-  const CellGrid grid = build_cell_grid(particles_.position, 2.0 * r_max + search, order);
+  if (cell_) check_cell_width(2.0 * r_max + search);
+  const CellGrid grid = cell_ ? build_cell_grid(particles_.position, 2.0 * r_max + search, *cell_, order)
+                              : build_cell_grid(particles_.position, 2.0 * r_max + search, order);
   particles_.permute(order);
 
   // 3. New candidate lists, with the archived history.
@@ -103,13 +147,14 @@ void Simulation::rebuild() {
     wall_lists.push_back(&wall_contacts_[w]);
     with_couple = with_couple || walls_[w].law.has_couple();
   }
-  outputs_.resize(offset, with_couple);
+  outputs_.resize(offset, with_couple, cell_ ? pairs_.size() : 0);
   incidence_ = build_incidence(particles_.size(), pairs_, wall_lists, wall_offsets_);
 
   reference_positions_ = particles_.position;
   reference_vertices_.clear();
   for (const auto& w : walls_) reference_vertices_.push_back(w.vertices);
   max_wall_displacement_ = 0.0;
+  affine_approach_ = 0.0;
   stale_ = false;
   ++rebuilds_;
 }
@@ -136,12 +181,14 @@ void Simulation::append_persistent_pairs(const HistoryArchive& archive) {
 
 void Simulation::install_bonds() {
   const double gap = settings_.particle_law.bond_gap();
+  const PeriodicSpace space = cell_ ? PeriodicSpace(*cell_) : PeriodicSpace();  // no cell: the plain difference
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::uint32_t i = pairs_.first[k], j = pairs_.second[k];
-    const double surface_gap = norm(particles_.position[j] - particles_.position[i]) - particles_.radius[i] - particles_.radius[j];
+    const double surface_gap = norm(space.branch(particles_.position[i], particles_.position[j])) - particles_.radius[i] - particles_.radius[j];
     if (surface_gap <= gap) set_bond_state(pairs_.row(k), BondState::intact);
   }
   bonds_installed_ = true;
+  install_requested_ = false;
 }
 
 BondCounts Simulation::bond_counts() const noexcept {
@@ -189,12 +236,20 @@ void Simulation::step(double dt) {
                       ": the run is unstable; reduce the time step");
   for (std::size_t w = 0; w < walls_.size(); ++w) distribute_wall_forces(walls_[w], wall_contacts_[w], outputs_, wall_offsets_[w]);
   move_walls(dt);
+  if (cell_) {
+    // The reference positions deform too, so max|dx| stays the motion relative
+    // to the homogeneous flow; the flow itself brings two partners (centres at
+    // most 2 r_max + skin apart) closer by at most max_a |rate_a dt| times that.
+    const Vec3 r = cell_->strain_rate;
+    affine_approach_ += std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) * dt * (2.0 * r_max_ + skin_);
+    cell_->deform(dt, particles_.position, reference_positions_);
+  }
   ++step_;
 
   // Verlet criterion: two particles approach by at most 2 max|dx|, a particle
   // and a facet by max|dx| + max|dx_wall|; either must stay below the skin.
   const double max_particle = std::sqrt(motion.max_displacement2);
-  if (2.0 * max_particle >= skin_ || max_particle + max_wall_displacement_ >= skin_) stale_ = true;
+  if (2.0 * max_particle + affine_approach_ >= skin_ || max_particle + max_wall_displacement_ >= skin_) stale_ = true;
 }
 
 void Simulation::run(std::int64_t steps, double dt) {

@@ -14,6 +14,7 @@
 #include "dfc/dem/parallel.hpp"
 #include "dfc/dem/contact_model.hpp"
 #include "dfc/dem/particle_store.hpp"
+#include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/triangle_geometry.hpp"
 #include "dfc/dem/wall.hpp"
 
@@ -25,8 +26,13 @@ inline constexpr double max_overlap_fraction = 0.5;
 
 /// Evaluates every pair candidate into outputs[0, pairs.size()).
 /// Returns true if some overlap exceeded max_overlap_fraction.
-template <ContactLawKernel Law>
-bool evaluate_pair_contacts(const Law& law, const ParticleStore& p, PairContacts& pairs, ContactOutputs& out, double dt, int threads) {
+/// Space: OpenSpace, or PeriodicSpace (periodic_cell.hpp): then the branch
+/// vector is the minimum image, the relative velocity includes the cell's
+/// affine flow, and out.shift[k] = (x_i + d) - x_j receives the image offset
+/// of the second particle (the integrator needs it for that body's lever arm).
+template <ContactLawKernel Law, class Space = OpenSpace>
+bool evaluate_pair_contacts(const Law& law, const ParticleStore& p, PairContacts& pairs, ContactOutputs& out, double dt, int threads,
+                            const Space& space = {}) {
   const auto n = static_cast<std::int64_t>(pairs.size());
   bool excessive = false;
 #pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items) reduction(|| : excessive)
@@ -36,7 +42,8 @@ bool evaluate_pair_contacts(const Law& law, const ParticleStore& p, PairContacts
     const std::uint32_t j = pairs.second[k];
     double* history = pairs.row(k);
     const Vec3 xi = p.position[i];
-    const Vec3 d = p.position[j] - xi;
+    const Vec3 d = space.branch(xi, p.position[j]);
+    if constexpr (Space::periodic) out.shift[k] = (xi + d) - p.position[j];
     const double ri = p.radius[i];
     const double rj = p.radius[j];
     const double reach = ri + rj;
@@ -58,8 +65,11 @@ bool evaluate_pair_contacts(const Law& law, const ParticleStore& p, PairContacts
     // Contact point in the middle of the overlap (PFC ball–ball convention).
     const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
     const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
-    const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - p.position[j]);
+    // Centre of j's image next to i (j itself in open space, so those bits are unchanged).
+    const Vec3 xj = Space::periodic ? xi + d : p.position[j];
+    const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - xj);
     kin.relative_velocity = vj - vi;
+    if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
     kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
     kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
     kin.radius_first = ri;

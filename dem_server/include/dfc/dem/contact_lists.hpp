@@ -58,8 +58,11 @@ struct ContactOutputs {
   std::vector<Vec3> force;   ///< N, on the first body (the particle for wall contacts)
   std::vector<Vec3> point;   ///< m, where it acts
   std::vector<Vec3> couple;  ///< N m, pure couple on the first body; empty unless a law has one
+  /// m, periodic cell only (else empty): per pair contact, the image offset of
+  /// the second particle, (x_first + branch) - x_second; zero inside the cell.
+  std::vector<Vec3> shift;
 
-  void resize(std::size_t n, bool with_couple);
+  void resize(std::size_t n, bool with_couple, std::size_t periodic_pairs = 0);
 };
 
 /// For every particle the contacts it takes part in, in increasing contact

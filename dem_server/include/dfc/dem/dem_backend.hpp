@@ -18,11 +18,17 @@
 //   wall_<name>_force_n/_moment_nm  particles on each rigid wall (moment about the origin), averaged
 //   axial_stress_pa, axial_strain   with a "ucs" section only (ucs_platens.hpp): platen stress,
 //                              compression positive, averaged over the advance; strain at its end
+//   cell_stress_xx/yy/zz_pa    with a "periodic" cell only (cell_stress.hpp): Love–Weber stress,
+//                              compression positive, averaged over the advance
+//   cell_strain_xx/yy/zz       engineering strain of the cell edges from the end of preparation,
+//                              (L0 - L)/L0, compression positive, at the end of the advance
+//   porosity                   1 - sphere volume / cell volume (periodic cell only)
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "dfc/dem/cell_servo.hpp"
 #include "dfc/dem/dem_config.hpp"
 #include "dfc/dem/model_builder.hpp"
 #include "dfc/dem/ucs_platens.hpp"
@@ -51,6 +57,8 @@ class DemBackend final : public protocol::SolverBackend {
   DemModel model_;
   std::optional<std::size_t> interface_wall_;
   std::optional<PlatenAxis> ucs_axis_;        ///< with a "ucs" section: the platens at configure
+  std::optional<CellServo> cell_servo_;       ///< with a "periodic" cell: its loading
+  Vec3 cell_reference_length_;                ///< m, cell edges at the end of preparation
   Vec3 pile_reference_;                       ///< m, a pile vertex at configure
   nlohmann::json averages_ = nlohmann::json::object();  ///< advance-averaged monitors of the last advance
 };

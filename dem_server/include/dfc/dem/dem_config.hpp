@@ -11,14 +11,18 @@
 
 #include "dfc/dem/bed_generator.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
+#include "dfc/dem/periodic_config.hpp"
+#include "dfc/dem/radius_expansion.hpp"
 #include "dfc/dem/wall.hpp"
 #include "dfc/dem/wall_builders.hpp"
 
 namespace dfc::dem {
 
 struct ParticleConfig {
-  std::string generator;                ///< "lattice" or "list"
+  std::string generator;                ///< "lattice", "list" or "radius_expansion"
   LatticeBedSpec lattice;               ///< generator "lattice"
+  RadiusExpansionSpec expansion;        ///< generator "radius_expansion" (spheres at the start radii)
+  std::vector<double> final_radius;     ///< m, generator "radius_expansion": by id
   double density = 0.0;                 ///< kg/m3
   std::vector<GeneratedSphere> spheres; ///< generated or listed; id = index
 };
@@ -64,6 +68,7 @@ struct DemConfig {
   std::vector<WallConfig> walls;
   std::optional<PileConfig> pile;
   std::optional<UcsConfig> ucs;
+  std::optional<PeriodicConfig> periodic;
   int threads = 0;
 };
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dfc/dem/particle_store.hpp"
+#include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/wall.hpp"
 
 namespace dfc::dem {
@@ -23,6 +24,11 @@ struct CellGrid {
   Vec3 origin;             ///< m, corner of cell (0,0,0)
   double cell_size = 0.0;  ///< m, >= 2 r_max + skin so that only adjacent cells can hold partners
   std::array<std::int64_t, 3> dims{1, 1, 1};
+  /// Periodic axes: the grid spans the cell exactly (the last cell takes the
+  /// remainder, so every cell is at least cell_size wide), cell dims-1 is the
+  /// neighbour of cell 0, and distances are minimum images (`space`).
+  std::array<bool, 3> periodic{false, false, false};
+  PeriodicSpace space;
   /// Particles of cell c are slots [cell_start[c], cell_start[c+1]) once the
   /// particles are ordered by `order` (build_cell_grid).
   std::vector<std::uint32_t> cell_start;
@@ -40,8 +46,13 @@ struct CellGrid {
 /// particle, so a particle flying away cannot exhaust memory). `order`
 /// receives the slots sorted by cell, stable: new slot k = old slot order[k].
 [[nodiscard]] CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, std::vector<std::uint32_t>& order);
+/// The same in a periodic cell: on its periodic axes the grid spans [lo, hi)
+/// (positions must be wrapped); on its open axes the particles' extent.
+[[nodiscard]] CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, const PeriodicCell& cell,
+                                       std::vector<std::uint32_t>& order);
 
-/// Candidate pairs (i < j by slot) with |x_i - x_j| < r_i + r_j + skin.
+/// Candidate pairs (i < j by slot) with |x_i - x_j| < r_i + r_j + skin
+/// (the minimum image on a periodic grid's periodic axes).
 /// The particles must be in grid order. Output order: by i, then by the
 /// cell stencil and slot of j.
 void find_pair_candidates(const CellGrid& grid, const ParticleStore& particles, double skin, int threads, std::vector<std::uint32_t>& first,

@@ -31,6 +31,10 @@ struct ParticleStore {
   /// radius or density.
   void add_sphere(std::int64_t particle_id, Vec3 x, double r, double density);
 
+  /// Sets the radius of `slot`, keeping its density: mass and inertia follow
+  /// (radius expansion, radius_expansion.hpp). Throws UserError for r <= 0.
+  void set_radius(std::size_t slot, double r);
+
   /// Reorders every field: new slot k takes old slot new_to_old[k].
   void permute(std::span<const std::uint32_t> new_to_old);
 };

@@ -16,9 +16,17 @@
 // pair whose surface gap is at most the law's bond_gap is bonded. From then
 // on every pair that was ever bonded stays in the pair list at every rebuild
 // (the persistent bond list), so a bond keeps its history however far its
-// particles separate before it breaks, and broken bonds stay counted.
+// particles separate before it breaks, and broken bonds stay counted. A
+// sample prepared unbonded (radius expansion, then a servo, as PFC does)
+// sets install_bonds_at_start = false and calls install_bonds_now() when ready.
+//
+// Periodic cell (periodic_cell.hpp, docs/dem_periodic.md): with one set,
+// branch vectors are minimum images, particles are wrapped into the cell at
+// every rebuild (history and bonds are keyed by particle ids, so they survive
+// the wrap), and each step ends with the cell's affine deformation.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <unordered_set>
 #include <vector>
@@ -27,6 +35,7 @@
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/contact_lists.hpp"
 #include "dfc/dem/particle_store.hpp"
+#include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/wall.hpp"
 
 namespace dfc::dem {
@@ -37,6 +46,7 @@ struct SimulationSettings {
   double local_damping = 0.7;      ///< alpha of local damping, [0, 1)
   double skin = 0.0;               ///< m, Verlet skin; <= 0: 0.2 x the largest radius
   int threads = 0;                 ///< OpenMP threads; <= 0: the OpenMP default
+  bool install_bonds_at_start = true;  ///< bonded laws: bond at the first rebuild (false: wait for install_bonds_now)
 };
 
 class Simulation {
@@ -65,6 +75,14 @@ class Simulation {
   void run(std::int64_t steps, double dt);
   /// Forces a neighbour-list rebuild before the next step.
   void request_rebuild() noexcept { stale_ = true; }
+  /// Bonded laws: bonds every pair within the bond gap at the next rebuild
+  /// (forced now); no effect once bonds were installed.
+  void install_bonds_now() noexcept;
+  /// Makes the space periodic on cell.periodic's axes (and deformable).
+  /// Throws UserError if a periodic edge is shorter than 2 (2 r_max + skin).
+  void set_periodic_cell(const PeriodicCell& cell);
+  /// 1/s, the cell's edge strain rates for the following steps (needs a cell).
+  void set_cell_strain_rate(const Vec3& rate);
 
   // State ---------------------------------------------------------------------
   [[nodiscard]] const ParticleStore& particles() const noexcept { return particles_; }
@@ -79,6 +97,8 @@ class Simulation {
   [[nodiscard]] double skin() const noexcept { return skin_; }
   [[nodiscard]] int threads() const noexcept { return threads_; }
   [[nodiscard]] const SimulationSettings& settings() const noexcept { return settings_; }
+  [[nodiscard]] const std::optional<PeriodicCell>& periodic_cell() const noexcept { return cell_; }
+  [[nodiscard]] bool bonds_installed() const noexcept { return bonds_installed_; }
   /// Bonds by state over the particle pairs (all zero for an unbonded law).
   [[nodiscard]] BondCounts bond_counts() const noexcept;
 
@@ -91,10 +111,13 @@ class Simulation {
   /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
   bool compute_contact_forces(double dt);
   void move_walls(double dt);
+  /// m, the largest edge a pair search needs: 2 r_max + search distance.
+  void check_cell_width(double reach) const;
 
   SimulationSettings settings_;
   int threads_ = 1;
   double skin_ = 0.0;
+  double r_max_ = 0.0;  ///< m, largest radius at the last rebuild
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
   std::vector<Wall> walls_;
@@ -112,6 +135,10 @@ class Simulation {
   std::size_t rebuilds_ = 0;
   bool stale_ = true;
   bool bonds_installed_ = false;
+  bool install_requested_ = false;
+
+  std::optional<PeriodicCell> cell_;
+  double affine_approach_ = 0.0;  ///< m, bound on how far the cell's deformation moved two partners together since the last rebuild
 };
 
 }  // namespace dfc::dem

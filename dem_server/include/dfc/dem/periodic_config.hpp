@@ -1,0 +1,60 @@
+#pragma once
+// The "periodic" block of the DEM section and the "radius_expansion"
+// particle generator (docs/dem_periodic.md §6). Kept apart from dem_config.cpp
+// so that the REV keys (and, later, upscaling of them) merge without conflicts.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "dfc/common/config_reader.hpp"
+#include "dfc/dem/cell_servo.hpp"
+#include "dfc/dem/periodic_cell.hpp"
+#include "dfc/dem/radius_expansion.hpp"
+
+namespace dfc::dem {
+
+/// How the cell is driven: during preparation ("consolidation") and during the
+/// coupled advance ("loading").
+struct CellLoading {
+  enum class Mode { none, isotropic, k0, triaxial, strain_rate };
+  Mode mode = Mode::none;
+  std::size_t axis = 2;     ///< k0 / triaxial: the vertical or axial edge (0 x, 1 y, 2 z)
+  double stress = 0.0;      ///< Pa, compression positive: p (isotropic), sigma_v (k0), sigma_3 (triaxial)
+  double axial_rate = 0.0;  ///< 1/s, triaxial: compressive axial strain rate (> 0)
+  Vec3 strain_rate;         ///< 1/s, strain_rate mode: edge rates, extension positive
+};
+
+struct ConsolidationSpec {
+  CellLoading loading;              ///< isotropic or k0
+  double tolerance = 0.01;          ///< relative stress error at which the target counts as reached
+  double unbalanced_force_ratio = 0.01;  ///< and the packing as in equilibrium
+  std::int64_t max_steps = 200000;
+  std::int64_t check_every = 100;
+};
+
+struct PeriodicConfig {
+  PeriodicCell cell;
+  double servo_gain = 0.5;
+  std::optional<double> max_strain_rate;      ///< 1/s; default 1e-4 / dt (set by the model builder)
+  std::optional<ConsolidationSpec> consolidation;
+  CellLoading loading;
+};
+
+/// Reads "periodic": min_m, max_m, axes, servo, consolidation, loading.
+[[nodiscard]] PeriodicConfig read_periodic_config(ConfigReader cfg);
+
+/// Reads the keys of generator "radius_expansion" inside "particles" (not
+/// density or generator, which the caller reads).
+[[nodiscard]] RadiusExpansionSpec read_radius_expansion(ConfigReader& particles);
+
+/// Fails on "<periodic>.min_m" if a periodic edge is shorter than 2 (2 r_max + reach),
+/// with reach the larger of the skin and the bond gap.
+void check_periodic_width(const PeriodicConfig& config, double r_max, double reach, const std::string& path);
+
+/// The servo that realises a loading (none: every edge fixed).
+[[nodiscard]] CellServo make_servo(const CellLoading& loading, double gain, double max_strain_rate);
+
+/// The part of dem_config_help() for these keys.
+[[nodiscard]] std::string periodic_config_help();
+
+}  // namespace dfc::dem

@@ -1,0 +1,40 @@
+#include "dfc/dem/periodic_cell.hpp"
+
+namespace dfc::dem {
+
+namespace {
+/// Scalar access to the three components (Vec3 is a plain aggregate).
+double& component(Vec3& v, int a) noexcept { return a == 0 ? v.x : a == 1 ? v.y : v.z; }
+double component(const Vec3& v, int a) noexcept { return a == 0 ? v.x : a == 1 ? v.y : v.z; }
+}  // namespace
+
+Vec3 PeriodicCell::wrap(const Vec3& x) const noexcept {
+  Vec3 out = x;
+  for (int a = 0; a < 3; ++a) {
+    if (!periodic[std::size_t(a)]) continue;
+    const double l = component(hi, a) - component(lo, a);
+    double& c = component(out, a);
+    c -= l * std::floor((c - component(lo, a)) / l);
+    // floor can leave c == hi by round-off of a value just below lo.
+    if (c >= component(hi, a)) c = component(lo, a);
+  }
+  return out;
+}
+
+Vec3 PeriodicCell::minimum_image(const Vec3& d) const noexcept { return PeriodicSpace(*this).branch(Vec3{}, d); }
+
+void PeriodicCell::deform(double dt, std::span<Vec3> positions, std::span<Vec3> references) noexcept {
+  const Vec3 c = centre();
+  const Vec3 f{1.0 + strain_rate.x * dt, 1.0 + strain_rate.y * dt, 1.0 + strain_rate.z * dt};
+  const auto stretch = [&](Vec3& x) { x = {c.x + f.x * (x.x - c.x), c.y + f.y * (x.y - c.y), c.z + f.z * (x.z - c.z)}; };
+  stretch(lo);
+  stretch(hi);
+  for (auto& x : positions) stretch(x);
+  for (auto& x : references) stretch(x);
+}
+
+PeriodicSpace::PeriodicSpace(const PeriodicCell& cell) noexcept : length(cell.length()), strain_rate(cell.strain_rate) {
+  inverse_length = {cell.periodic[0] ? 1.0 / length.x : 0.0, cell.periodic[1] ? 1.0 / length.y : 0.0, cell.periodic[2] ? 1.0 / length.z : 0.0};
+}
+
+}  // namespace dfc::dem
