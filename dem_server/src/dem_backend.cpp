@@ -232,6 +232,20 @@ nlohmann::json DemBackend::monitors() {
       out["cell_stress_yy_pa"] = stress.y;
       out["cell_stress_zz_pa"] = stress.z;
     }
+    // Triaxial (or unconfined, sigma_3 = 0) loading of the REV: the same
+    // axial monitors as a platen test (ucs_platens.hpp), so one plot and one
+    // calibration procedure serve both, plus the deviator q = sigma_a - sigma_3
+    // (sigma_3 the mean of the two lateral stresses).
+    if (!ucs_axis_ && config_.periodic && config_.periodic->loading.mode == CellLoading::Mode::triaxial) {
+      static constexpr const char* stress_keys[3] = {"cell_stress_xx_pa", "cell_stress_yy_pa", "cell_stress_zz_pa"};
+      static constexpr const char* strain_keys[3] = {"cell_strain_xx", "cell_strain_yy", "cell_strain_zz"};
+      const std::size_t a = config_.periodic->loading.axis;
+      const double axial = out[stress_keys[a]].get<double>();
+      const double lateral = 0.5 * (out[stress_keys[(a + 1) % 3]].get<double>() + out[stress_keys[(a + 2) % 3]].get<double>());
+      out["axial_stress_pa"] = axial;
+      out["axial_strain"] = out[strain_keys[a]];
+      out["deviatoric_stress_pa"] = axial - lateral;
+    }
   }
   if (model_.pile_wall) {
     out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());

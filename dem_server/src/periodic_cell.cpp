@@ -1,5 +1,7 @@
 #include "dfc/dem/periodic_cell.hpp"
 
+#include <limits>
+
 namespace dfc::dem {
 
 namespace {
@@ -33,8 +35,15 @@ void PeriodicCell::deform(double dt, std::span<Vec3> positions, std::span<Vec3> 
   for (auto& x : references) stretch(x);
 }
 
+namespace {
+constexpr double open_axis = std::numeric_limits<double>::infinity();
+}  // namespace
+
+PeriodicSpace::PeriodicSpace() : half_length{open_axis, open_axis, open_axis} {}
+
 PeriodicSpace::PeriodicSpace(const PeriodicCell& cell) noexcept : length(cell.length()), strain_rate(cell.strain_rate) {
-  inverse_length = {cell.periodic[0] ? 1.0 / length.x : 0.0, cell.periodic[1] ? 1.0 / length.y : 0.0, cell.periodic[2] ? 1.0 / length.z : 0.0};
+  half_length = {cell.periodic[0] ? 0.5 * length.x : open_axis, cell.periodic[1] ? 0.5 * length.y : open_axis,
+                 cell.periodic[2] ? 0.5 * length.z : open_axis};
 }
 
 }  // namespace dfc::dem

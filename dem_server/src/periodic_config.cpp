@@ -28,7 +28,7 @@ CellLoading read_loading(ConfigReader& cfg, const std::vector<std::string>& mode
   }
   if (mode == "triaxial") {
     l.mode = CellLoading::Mode::triaxial;
-    l.stress = cfg.positive("stress_pa");
+    l.stress = cfg.number("stress_pa", Bounds{0.0});  // 0: unconfined (UCS of an REV)
     l.axial_rate = cfg.positive("axial_strain_rate_per_s");
     l.axis = read_axis(cfg, "axis");
   }
@@ -134,7 +134,7 @@ std::string periodic_config_help() {
                      {"mode":"isotropic"|"k0", "stress_pa" (p, or sigma_v on "axis":"z"), "tolerance":0.01 (relative
                       stress error), "unbalanced_force_ratio":0.01, "max_steps":200000, "check_every":100},
                    "loading" (during advance): {"mode":"none"|"isotropic"|"k0"|"triaxial"|"strain_rate",
-                     "stress_pa" (p, sigma_v, or sigma_3 of triaxial), "axis":"z" (k0, triaxial),
+                     "stress_pa" (p, sigma_v, or sigma_3 of triaxial: 0 = unconfined), "axis":"z" (k0, triaxial),
                      "axial_strain_rate_per_s" (triaxial: compression > 0), "strain_rate_per_s":[x,y,z] (strain_rate:
                      edge rates, extension positive)}}
                   adds the monitors cell_stress_xx/yy/zz_pa (Love-Weber over particle contacts, compression

@@ -11,12 +11,10 @@
 //
 // --data: the peer benchmark (shared/bench/peers/README.md) on a LAMMPS data
 // file (atom_style sphere: id type diameter density x y z): kn 1e5 N/m,
-// ks 2/7 kn, mu 0.5, dt 1e-6 s, skin 0.11 mm, no local damping, floor at z = 0;
-// read at rest, --warmup steps untimed, then --steps timed. Differences from
-// the peers, documented in docs/dem_benchmarks.md: this DEM has no periodic
-// boundaries, so frictionless walls stand one largest radius outside the x and
-// y cell faces; its normal
-// dashpot is a fraction of critical (beta_n = 0.215 matches the peers'
+// ks 2/7 kn, mu 0.5, dt 1e-6 s, skin 0.11 mm, no local damping, periodic in x
+// and y, floor at z = 0; read at rest, --warmup steps untimed, then --steps
+// timed. Differences from the peers, documented in docs/dem_benchmarks.md: the
+// normal dashpot is a fraction of critical (beta_n = 0.215 matches the peers'
 // gamma_n = 1.418e5 1/s for the mean pair, m_eff = 9.2e-7 kg) and it has no
 // tangential dashpot.
 //
@@ -159,25 +157,18 @@ nlohmann::json peer_law(const std::string& law) {
 
 nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::string& law_name) {
   const nlohmann::json law = peer_law(law_name);
-  nlohmann::json smooth = peer_law("linear");
-  smooth["friction"] = 0.0;
-  // The periodic packing has spheres across the x and y faces: the side walls
-  // stand one largest radius outside the cell so that none is cut.
-  // The model builder removes spheres that start overlapping a wall, so the
-  // floor goes down to the lowest sphere bottom (the settled packing presses
-  // its bottom layer ~1 um into the peers' floor at z = 0).
-  double r_max = 0.0, floor_z = 0.0;
-  for (const auto& s : pack.spheres) {
-    r_max = std::max(r_max, s[3].get<double>());
-    floor_z = std::min(floor_z, s[2].get<double>() - s[3].get<double>());
-  }
-  const double x0 = pack.box[0][0] - r_max, x1 = pack.box[0][1] + r_max, y0 = pack.box[1][0] - r_max, y1 = pack.box[1][1] + r_max;
-  const double zc = pack.box[2][1] / 2;
-  const double xc = 0.5 * (x0 + x1), yc = 0.5 * (y0 + y1), half = (x1 - x0) + pack.box[2][1];
-  nlohmann::json walls = nlohmann::json::array({{{"type", "plane"}, {"name", "floor"}, {"point_m", {xc, yc, floor_z}}, {"normal", {0, 0, 1}}, {"half_size_m", half}}});
-  for (const auto& [point, normal] : {std::pair<std::vector<double>, std::vector<double>>{{x0, yc, zc}, {1, 0, 0}}, {{x1, yc, zc}, {-1, 0, 0}},
-                                      {{xc, y0, zc}, {0, 1, 0}}, {{xc, y1, zc}, {0, -1, 0}}})
-    walls.push_back({{"type", "plane"}, {"point_m", point}, {"normal", normal}, {"half_size_m", half}, {"contact", smooth}});
+  // Periodic in x and y like the peers (docs/dem_periodic.md), with the floor
+  // at the lowest sphere bottom: the model builder removes spheres that start
+  // overlapping a wall, and the settled packing presses its bottom layer ~1 um
+  // into the peers' floor at z = 0.
+  double floor_z = 0.0;
+  for (const auto& s : pack.spheres) floor_z = std::min(floor_z, s[2].get<double>() - s[3].get<double>());
+  const double xc = 0.5 * (pack.box[0][0] + pack.box[0][1]), yc = 0.5 * (pack.box[1][0] + pack.box[1][1]);
+  const double half = (pack.box[0][1] - pack.box[0][0]) + (pack.box[1][1] - pack.box[1][0]);  // covers the cell and its images
+  const nlohmann::json walls = nlohmann::json::array({{{"type", "plane"}, {"name", "floor"}, {"point_m", {xc, yc, floor_z}}, {"normal", {0, 0, 1}}, {"half_size_m", half}}});
+  const nlohmann::json periodic = {{"min_m", {pack.box[0][0], pack.box[1][0], floor_z}},
+                                   {"max_m", {pack.box[0][1], pack.box[1][1], pack.box[2][1]}},
+                                   {"axes", "xy"}};
   return {{"particles", {{"generator", "list"}, {"spheres", pack.spheres}, {"density_kg_m3", 2650}}},
           {"contact", law},
           {"wall_contact", peer_law("linear")},
@@ -186,6 +177,7 @@ nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::st
           {"gravity_m_s2", {0, 0, -9.81}},
           {"neighbour", {{"skin_m", 1.1e-4}}},
           {"walls", walls},
+          {"periodic", periodic},
           {"threads", threads}};
 }
 

@@ -33,7 +33,7 @@ struct ReturnWeights {
 
 /// The point of {f <= 0} closest to `trial` in the weighted metric; `trial`
 /// itself if it is admissible. The result satisfies -1e-12 <= f <= 0
-/// (found by bisection on the Lagrange multiplier, each inner problem a convex
+/// (found by Illinois regula falsi on the Lagrange multiplier, each inner problem a convex
 /// Newton solve), keeps the sign of n and has v <= trial.v, m <= trial.m.
 [[nodiscard]] EnvelopePoint closest_admissible_point(const EnvelopePoint& trial, const ReturnWeights& weights) noexcept;
 
