@@ -48,6 +48,13 @@ TEST(ClosedForms, LameMeetsItsBoundaryConditions) {
   const LameSolution l;
   EXPECT_NEAR(l.radial_stress(l.inner_radius), -l.inner_pressure, 1e-6);
   EXPECT_NEAR(l.radial_stress(l.outer_radius), -l.outer_pressure, 1e-6);
+  // Outer wall held: loaded inside, no radial displacement outside (1e-6 Pa
+  // and 1e-18 m are round-off of 1e7 Pa and of a ~1e-3 m displacement).
+  LameSolution held;
+  held.outer_wall_held = true;
+  EXPECT_NEAR(held.radial_stress(held.inner_radius), -held.inner_pressure, 1e-6);
+  EXPECT_NEAR(held.radial_displacement(held.outer_radius), 0.0, 1e-18);
+  EXPECT_GT(held.radial_displacement(held.inner_radius), 0.0);  // pushed outwards
 }
 
 TEST(ClosedForms, BoussinesqSurfaceSettlementAndStressLimits) {

@@ -1,15 +1,15 @@
 // Thick-walled cylinder under internal pressure (Lamé; fdm-physics.md §2(b))
 // on the cylinder_cavity mesh: exercises the pressure on a curved face group
 // and the radial roller on the outer wall. Plane strain (z rollers on top and
-// bottom), outer radius held (u_r(b) = 0). Tension positive:
-//   σ_r = A − B/r², σ_θ = A + B/r², u_r = r/(2G) [(1−2ν)A + B/r²],
-// with σ_r(a) = −p and u_r(b) = 0  ⇒  B = −(1−2ν)A b², A = −p / (1 + (1−2ν) b²/a²).
+// bottom), outer radius held (u_r(b) = 0): the closed form is LameSolution
+// with outer_wall_held (verification/lame_cylinder.hpp), tension positive.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
 #include "dfc/fdm/mesh_generators.hpp"
+#include "dfc/fdm/verification/lame_cylinder.hpp"
 #include "fdm_test_support.hpp"
 
 namespace dfc::fdm {
@@ -37,10 +37,9 @@ TEST(LameCylinder, InternalPressureWithRadialRollerOuterWallMatchesClosedForm) {
   const int steps = test::run_to_equilibrium(solver, 1.0, 1e-8, 100000);
   ASSERT_GT(steps, 0);
 
-  const double shear = young / (2.0 * (1.0 + poisson));
-  const double A = -pressure / (1.0 + (1.0 - 2.0 * poisson) * b * b / (a * a));
-  const double B = -(1.0 - 2.0 * poisson) * A * b * b;
-  const auto radial_displacement = [&](double r) { return r / (2.0 * shear) * ((1.0 - 2.0 * poisson) * A + B / (r * r)); };
+  const verification::LameSolution exact{.inner_radius = a, .outer_radius = b, .inner_pressure = pressure, .outer_pressure = 0.0,
+                                         .young_modulus = young, .poisson_ratio = poisson, .outer_wall_held = true};
+  const auto radial_displacement = [&](double r) { return exact.radial_displacement(r); };
 
   double worst_u = 0.0;
   for (const Index gp : solver.mesh().face_group_gridpoints("inner")) {
@@ -56,8 +55,8 @@ TEST(LameCylinder, InternalPressureWithRadialRollerOuterWallMatchesClosedForm) {
     const Vec3 n = Vec3(c.x(), c.y(), 0.0) / r;
     const Vec3 t(-n.y(), n.x(), 0.0);
     const Stress s = solver.zone_stress(z);
-    worst_stress = std::max({worst_stress, std::abs(n.dot(s.apply(n)) - (A - B / (r * r))) / pressure,
-                             std::abs(t.dot(s.apply(t)) - (A + B / (r * r))) / pressure});
+    worst_stress = std::max({worst_stress, std::abs(n.dot(s.apply(n)) - exact.radial_stress(r)) / pressure,
+                             std::abs(t.dot(s.apply(t)) - exact.hoop_stress(r)) / pressure});
   }
   std::printf("[ Lame cylinder ] %d steps; u_r(a) error %.2e, worst sigma_r/sigma_theta error %.2e of p (r >= 1.5a)\n", steps, worst_u,
               worst_stress);

@@ -3,15 +3,15 @@
 // pressure on the cavity wall arrives as lumped interface forces, exactly as
 // DEM wall forces would, and the condensed compliance returns the wall
 // displacement. Plane strain by rollers on top and bottom, outer wall on radial
-// rollers (u_r(b) = 0). Tension positive:
-//   σ_r = A − B/r², u_r = r/(2G) [(1−2ν)A + B/r²],
-// σ_r(a) = −p, u_r(b) = 0  ⇒  B = −(1−2ν)A b², A = −p / (1 + (1−2ν) b²/a²).
+// rollers (u_r(b) = 0): the closed form is LameSolution with outer_wall_held
+// (fdm_server/verification/include/dfc/fdm/verification/lame_cylinder.hpp).
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "dfc/fdm/boundary_conditions.hpp"
 #include "dfc/fdm/fdm_config.hpp"
+#include "dfc/fdm/verification/lame_cylinder.hpp"
 #include "dfc/reference/condensed_elastic_continuum.hpp"
 
 namespace dfc::reference {
@@ -53,10 +53,9 @@ TEST(LameCylinderReference, InterfaceRadialDisplacementMatchesClosedForm) {
   for (const Index gp : interface) force.insert(force.end(), {loads[gp].x(), loads[gp].y(), loads[gp].z()});
   const Eigen::VectorXd displacement = condensed.interface_displacement(force);
 
-  const double shear = young / (2.0 * (1.0 + poisson));
-  const double A = -pressure / (1.0 + (1.0 - 2.0 * poisson) * b * b / (a * a));
-  const double B = -(1.0 - 2.0 * poisson) * A * b * b;
-  const double exact = a / (2.0 * shear) * ((1.0 - 2.0 * poisson) * A + B / (a * a));
+  const double exact = fdm::verification::LameSolution{.inner_radius = a, .outer_radius = b, .inner_pressure = pressure, .outer_pressure = 0.0,
+                                                      .young_modulus = young, .poisson_ratio = poisson, .outer_wall_held = true}
+                           .radial_displacement(a);
   double worst = 0.0;
   double worst_tangential = 0.0;
   for (std::size_t r = 0; r < interface.size(); ++r) {

@@ -16,12 +16,14 @@ namespace dfc::fdm::verification {
 double LameSolution::a_coefficient() const {
   const double a2 = inner_radius * inner_radius;
   const double b2 = outer_radius * outer_radius;
+  if (outer_wall_held) return -inner_pressure / (1.0 + (1.0 - 2.0 * poisson_ratio) * b2 / a2);
   return (inner_pressure * a2 - outer_pressure * b2) / (b2 - a2);
 }
 
 double LameSolution::b_coefficient() const {
   const double a2 = inner_radius * inner_radius;
   const double b2 = outer_radius * outer_radius;
+  if (outer_wall_held) return -(1.0 - 2.0 * poisson_ratio) * a_coefficient() * b2;
   return (inner_pressure - outer_pressure) * a2 * b2 / (b2 - a2);
 }
 
