@@ -24,7 +24,9 @@ labelled by the run's folder name:
                                stiffness (least-squares slope of the pre-peak points
                                below 30 % of the peak) and the spread of both
                                ((max - min) / mean) across the runs
-  pile_force_overlay.png       pile force against displacement of every run
+  pile_force_overlay.png       pile force against displacement of every run, and prints per run
+                               the mean force over the last third of the push after first
+                               contact and the final force (docs/continuum_comparison.md)
 A plot whose columns are absent is skipped. The time axis is time_s if present,
 else step, else exchange, else the row number. Prints the path of every file written.
 The file may still be open in a running coupler: it is read without the HDF5
@@ -246,6 +248,8 @@ def plot_overlays(runs, out_dir):
         fig, ax = plt.subplots(figsize=(6.5, 4.8))
         for label, displacement, force in piles:
             n = min(len(displacement), len(force))
+            late_mean, final = pile_force_summary(force[:n])
+            print(f"{label}: mean pile force over the last third of the push {late_mean:.3f} N, final {final:.3f} N")
             ax.plot(force[:n] / 1e3, displacement[:n] * 1e3, label=label)
         ax.set_xlabel("pile force [kN]")
         ax.set_ylabel("pile displacement [mm]")
@@ -255,6 +259,13 @@ def plot_overlays(runs, out_dir):
         ax.set_title("Pile load-displacement")
         written.append(save(fig, out_dir, "pile_force_overlay.png"))
     return written
+
+
+def pile_force_summary(force):
+    """Mean force over the last third of the samples after first contact, and the final force (N)."""
+    contact = np.flatnonzero(force > 0.0)
+    pushed = force[contact[0]:] if contact.size else force
+    return float(pushed[-max(1, pushed.size // 3):].mean()), float(force[-1])
 
 
 def run_label(path):

@@ -2,6 +2,9 @@
 """CTest check of tools/plot_results.py: run it on a sample results file, and
 on a copy whose columns are named the way the coupler records them, and
 require the three PNGs each time, each a real PNG, and their paths on stdout.
+Then the overlay mode on both files at once: the pile overlay PNG, and one
+summary line per run with the same numbers (the two files hold the same data
+under the two naming schemes).
 
     results_plot_check.py PLOT_RESULTS_PY SAMPLE.h5 OUT_DIR
 
@@ -55,6 +58,24 @@ def check(tool, sample, out_dir):
     return [f"{sample}: {failure}" for failure in failures]
 
 
+def check_overlay(tool, files, out_dir):
+    shutil.rmtree(out_dir, ignore_errors=True)
+    run = subprocess.run([sys.executable, tool, *files, "--out", out_dir], capture_output=True, text=True)
+    print(run.stdout, run.stderr, sep="")
+    if run.returncode != 0:
+        return [f"overlay: plot_results.py exited with {run.returncode}"]
+    failures = []
+    path = os.path.join(out_dir, "pile_force_overlay.png")
+    if not os.path.isfile(path) or path not in run.stdout:
+        failures.append("overlay: pile_force_overlay.png was not written and printed")
+    summaries = [line.split(":", 1)[1] for line in run.stdout.splitlines() if "mean pile force over the last third" in line]
+    if len(summaries) != len(files):
+        failures.append(f"overlay: {len(summaries)} pile summaries for {len(files)} runs")
+    elif len(set(summaries)) != 1:
+        failures.append(f"overlay: the same data summarised differently: {summaries}")
+    return failures
+
+
 def main():
     tool, sample, out_dir = sys.argv[1:4]
     missing = [m for m in ("numpy", "matplotlib", "h5py") if importlib.util.find_spec(m) is None]
@@ -66,6 +87,7 @@ def main():
     os.makedirs(out_dir, exist_ok=True)
     coupler_named_copy(sample, renamed)
     failures += check(tool, renamed, os.path.join(out_dir, "coupler_names"))
+    failures += check_overlay(tool, [sample, renamed], os.path.join(out_dir, "overlay"))
     for failure in failures:
         print("FAIL:", failure)
     return 1 if failures else 0
