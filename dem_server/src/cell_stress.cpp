@@ -40,9 +40,7 @@ CellStress measure_cell_stress(const Simulation& sim) {
 }
 
 double cell_porosity(const ParticleStore& particles, const PeriodicCell& cell) {
-  double solid = 0.0;
-  for (const double r : particles.radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  return 1.0 - solid / cell.volume();
+  return 1.0 - sphere_volume_sum(particles) / cell.volume();
 }
 
 }  // namespace dfc::dem

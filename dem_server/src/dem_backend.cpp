@@ -41,6 +41,13 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
     ucs_axis_ = platen_axis(walls[config_.ucs->top_wall].vertices, walls[config_.ucs->bottom_wall].vertices);
   }
   cell_servo_.reset();
+  triaxial_.reset();
+  if (config_.triaxial) {
+    const auto& walls = sim().walls();
+    const BoxAxes axes = box_axes(box_vertices(walls, config_.triaxial->walls));
+    const BoxSize size = box_size(walls, config_.triaxial->walls, axes);
+    triaxial_ = TriaxialRun{axes, size, triaxial_shearing(*config_.triaxial, model_.max_strain_rate, size.height)};
+  }
   nlohmann::json info = {{"dt_suggested", model_.dt},
                          {"dt_max", model_.dt_critical},
                          {"particles", sim().particles().size()},
@@ -148,9 +155,17 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
   Vec3 reaction_sum;
   Vec3 cell_stress_sum;
+  double axial_sum = 0.0, lateral_sum = 0.0;
   for (std::int64_t step = 0; step < request.n_steps; ++step) {
-    if (cell_servo_) cell_stress_sum += servo_step(s, *cell_servo_, request.dt).diagonal();
-    else s.step(request.dt);
+    if (cell_servo_) {
+      cell_stress_sum += servo_step(s, *cell_servo_, request.dt).diagonal();
+    } else if (triaxial_) {
+      const BoxStress box = triaxial_step(s, config_.triaxial->walls, triaxial_->axes, triaxial_->control, request.dt);
+      axial_sum += box.axial();
+      lateral_sum += box.lateral();
+    } else {
+      s.step(request.dt);
+    }
     for (std::size_t w = 0; w < walls.size(); ++w) {
       wall_force_sum[w] += walls[w].force;
       wall_moment_sum[w] += walls[w].moment;
@@ -178,6 +193,11 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["cell_stress_xx_pa"] = inv_n * cell_stress_sum.x;
     averages_["cell_stress_yy_pa"] = inv_n * cell_stress_sum.y;
     averages_["cell_stress_zz_pa"] = inv_n * cell_stress_sum.z;
+  }
+  if (triaxial_) {
+    averages_["axial_stress_pa"] = inv_n * axial_sum;
+    averages_["lateral_stress_pa"] = inv_n * lateral_sum;
+    averages_["deviatoric_stress_pa"] = inv_n * (axial_sum - lateral_sum);
   }
   if (model_.pile_wall) averages_["pile_force_n"] = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
   if (interface_wall_) {
@@ -218,6 +238,20 @@ nlohmann::json DemBackend::monitors() {
     const Wall& bottom = s.walls()[config_.ucs->bottom_wall];
     out["axial_strain"] = axial_strain(*ucs_axis_, platen_separation(*ucs_axis_, top.vertices, bottom.vertices));
     if (!out.contains("axial_stress_pa")) out["axial_stress_pa"] = axial_stress(*ucs_axis_, top.force, bottom.force, config_.ucs->area);
+  }
+  if (triaxial_) {
+    const TriaxialWalls& box = config_.triaxial->walls;
+    const BoxSize size = box_size(s.walls(), box, triaxial_->axes);
+    const BoxSize& ref = triaxial_->reference;
+    out["axial_strain"] = (ref.height - size.height) / ref.height;
+    out["volumetric_strain"] = (ref.volume() - size.volume()) / ref.volume();
+    out["porosity"] = box_porosity(s.particles(), size);
+    if (!out.contains("axial_stress_pa")) {
+      const BoxStress stress = box_stress(s.walls(), box, triaxial_->axes, size);
+      out["axial_stress_pa"] = stress.axial();
+      out["lateral_stress_pa"] = stress.lateral();
+      out["deviatoric_stress_pa"] = stress.deviator();
+    }
   }
   if (const auto& cell = s.periodic_cell()) {
     const Vec3 l = cell->length();

@@ -168,10 +168,11 @@ WallConfig read_wall(ConfigReader cfg, std::size_t index, std::set<std::string>&
     const Vec3 point = to_vec3(cfg.vec3("point_m"));
     const Vec3 normal = to_vec3(cfg.vec3("normal"));
     if (!(norm(normal) > 0.0)) cfg.fail("normal", "must not be the zero vector");
-    // Default size: covers the particles' bounding box seen from the point, generously.
+    // Default size: covers the particles' bounding box seen from the point,
+    // generously; none when the particles are generated later inside the walls.
     const Vec3 centre = 0.5 * (particle_box.first + particle_box.second);
     const double fallback = norm(centre - point) + norm(particle_box.second - particle_box.first);
-    wall.mesh = make_plane_mesh(point, normal, cfg.positive("half_size_m", fallback));
+    wall.mesh = make_plane_mesh(point, normal, std::isfinite(fallback) ? cfg.positive("half_size_m", fallback) : cfg.positive("half_size_m"));
   } else {
     wall.mesh = read_facet_mesh(cfg);
   }
@@ -279,6 +280,63 @@ UcsConfig read_ucs(ConfigReader cfg, DemConfig& c) {
   return ucs;
 }
 
+/// The meshes of the six walls in TriaxialWalls::in_order().
+BoxVertices config_box_vertices(const std::vector<WallConfig>& walls, const TriaxialWalls& box) {
+  BoxVertices v;
+  const auto order = box.in_order();
+  for (std::size_t k = 0; k < 6; ++k) v[k] = walls[order[k]].mesh.vertices;
+  return v;
+}
+
+TriaxialConfig read_triaxial(ConfigReader cfg, DemConfig& c) {
+  if (c.periodic) cfg.fail("top_wall", "a periodic cell has no walls to confine; use periodic.loading with mode \"triaxial\" instead");
+  if (c.ucs) cfg.fail("top_wall", "give either a \"ucs\" or a \"triaxial\" section, not both");
+  TriaxialConfig t;
+  t.walls.top = find_wall(cfg, "top_wall", c.walls);
+  t.walls.bottom = find_wall(cfg, "bottom_wall", c.walls);
+  const std::vector<std::string> lateral = cfg.strings("lateral_walls");
+  if (lateral.size() != 4)
+    cfg.fail("lateral_walls", "name four walls: the two of one opposite pair, then the two of the other, e.g. [\"x_min\", \"x_max\", \"y_min\", \"y_max\"]");
+  std::set<std::size_t> used{t.walls.top, t.walls.bottom};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto it = std::find_if(c.walls.begin(), c.walls.end(), [&](const WallConfig& w) { return w.name == lateral[k]; });
+    if (it == c.walls.end()) cfg.fail("lateral_walls", "no wall is called \"" + lateral[k] + "\"; name four of the \"walls\"");
+    t.walls.lateral[k] = std::size_t(it - c.walls.begin());
+    used.insert(t.walls.lateral[k]);
+  }
+  if (used.size() != 6) cfg.fail("lateral_walls", "the platens and the four lateral walls must be six different walls");
+  for (const std::size_t w : used)
+    if (norm(c.walls[w].velocity) > 0.0 || c.walls[w].start_step != 0)
+      cfg.fail("top_wall", "wall \"" + c.walls[w].name + "\" has a velocity_m_s or start_step; the triaxial servo drives all six walls, remove them");
+  BoxAxes axes;
+  try {
+    axes = box_axes(config_box_vertices(c.walls, t.walls));
+  } catch (const UserError& e) {
+    cfg.fail("lateral_walls", e.what());
+  }
+  // Every wall onto the outermost particles along its normal; a radius
+  // expansion fills the walls as they stand instead.
+  if (cfg.boolean("seat_walls", true) && !c.particles.spheres.empty()) {
+    seat_platens(c.walls[t.walls.top], c.walls[t.walls.bottom], c.particles.spheres, {axes.axis, 0.0});
+    for (std::size_t p = 0; p < 2; ++p)
+      seat_platens(c.walls[t.walls.lateral[2 * p + 1]], c.walls[t.walls.lateral[2 * p]], c.particles.spheres, {axes.lateral[p], 0.0});
+  }
+  t.confining_stress = cfg.positive("confining_stress_pa");
+  t.strain_rate = cfg.positive("strain_rate_per_s");
+  if (auto servo = cfg.optional_child("servo")) {
+    t.servo_gain = servo->number("gain", 0.5, Bounds{0.0, 1.0, true});
+    if (servo->has("max_strain_rate_per_s")) t.max_strain_rate = servo->positive("max_strain_rate_per_s");
+    else servo->accept("max_strain_rate_per_s");
+    servo->finish();
+  }
+  if (auto confinement = cfg.optional_child("confinement")) {
+    t.confinement = read_equilibrium_target(*confinement);
+    confinement->finish();
+  }
+  cfg.finish();
+  return t;
+}
+
 TimestepConfig read_timestep(ConfigReader& root) {
   TimestepConfig t;
   auto cfg = root.optional_child("timestep");
@@ -311,6 +369,35 @@ void read_periodic_particles(DemConfig& c, const std::string& periodic_path) {
   check_periodic_width(*c.periodic, r_max, std::max(skin, c.contact.bond_gap()), periodic_path);
 }
 
+/// Radius expansion inside the six walls of a triaxial section: the box their
+/// centroids bound (walls normal to x, y and z; each centroid is the lowest or
+/// highest of the six along its own normal, the middle along the others) as a
+/// cell with no periodic axis, so the placement keeps whole spheres inside it.
+void place_in_walls(DemConfig& c) {
+  if (!c.triaxial)
+    throw ConfigError("particles.generator",
+                      "\"radius_expansion\" fills a periodic cell or the six walls of a triaxial section: add a \"periodic\" block with min_m and "
+                      "max_m, or a \"triaxial\" section");
+  const BoxVertices vertices = config_box_vertices(c.walls, c.triaxial->walls);
+  const BoxAxes axes = box_axes(vertices);
+  for (const Vec3& a : {axes.axis, axes.lateral[0], axes.lateral[1]})
+    if (std::max({std::abs(a.x), std::abs(a.y), std::abs(a.z)}) < 1.0 - 1e-12)
+      throw ConfigError("triaxial.lateral_walls", "a radius expansion inside the walls needs the six walls normal to x, y or z");
+  PeriodicCell box{.lo = {inf, inf, inf}, .hi = {-inf, -inf, -inf}, .periodic = {false, false, false}, .strain_rate = {}};
+  for (const auto& v : vertices) {
+    const Vec3 x = vertex_centroid(v);
+    box.lo = {std::min(box.lo.x, x.x), std::min(box.lo.y, x.y), std::min(box.lo.z, x.z)};
+    box.hi = {std::max(box.hi.x, x.x), std::max(box.hi.y, x.y), std::max(box.hi.z, x.z)};
+  }
+  try {
+    ExpansionPacking packing = place_for_radius_expansion(c.particles.expansion, box);
+    c.particles.spheres = std::move(packing.spheres);
+    c.particles.final_radius = std::move(packing.final_radius);
+  } catch (const UserError& e) {
+    throw ConfigError("particles.multiplier", e.what());
+  }
+}
+
 }  // namespace
 
 DemConfig parse_dem_config(const nlohmann::json& section) {
@@ -339,8 +426,6 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
     read_periodic_particles(c, path);
   } else {
     cfg.accept("periodic");
-    if (c.particles.generator == "radius_expansion")
-      throw ConfigError("particles.generator", "\"radius_expansion\" fills a periodic cell: add a \"periodic\" block with min_m and max_m");
   }
   const auto box = bounding_box(c.particles.spheres);
   if (cfg.has("walls")) {
@@ -352,6 +437,8 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
   }
   if (auto pile = cfg.optional_child("pile")) c.pile = read_pile(std::move(*pile), c.wall_contact, c.scale_factor);
   if (auto ucs = cfg.optional_child("ucs")) c.ucs = read_ucs(std::move(*ucs), c);
+  if (auto triaxial = cfg.optional_child("triaxial")) c.triaxial = read_triaxial(std::move(*triaxial), c);
+  if (c.particles.generator == "radius_expansion" && !c.periodic) place_in_walls(c);
   c.threads = int(cfg.integer("threads", 0, 0));
   cfg.finish();
   return c;
@@ -394,6 +481,18 @@ std::string dem_config_help() {
                    the platens must then have no velocity_m_s), "start_step":0}
                   adds the monitors axial_stress_pa (platen force / area, compression positive, averaged over
                   the advance and over both platens) and axial_strain ((H0 - H)/H0, H the platen separation)
+  triaxial        triaxial compression in six rigid plane walls (docs/dem_ucs.md §6):
+                  {"top_wall", "bottom_wall", "lateral_walls":[first, second of one pair, first, second of the
+                   other] (wall names; the three pairs face each other along perpendicular directions),
+                   "confining_stress_pa" (sigma_3, required), "strain_rate_per_s" (axial, required: each platen
+                   moves at rate H0/2), "seat_walls":true (move every wall onto the outermost particles),
+                   "servo":{"gain":0.5, "max_strain_rate_per_s" (cap of a servo-controlled pair; default
+                   1e-4 / dt)}, "confinement":{"tolerance":0.01, "unbalanced_force_ratio":0.01,
+                   "max_steps":200000, "check_every":100}}
+                  preparation: all six walls servo-controlled to sigma_3, then bonds; during advance the
+                  platens close and the lateral walls hold sigma_3. The six walls must have no velocity_m_s.
+                  Monitors: axial_stress_pa, lateral_stress_pa, deviatoric_stress_pa (averaged over the
+                  advance), axial_strain (H0 - H)/H0, volumetric_strain (V0 - V)/V0, porosity (of the box)
   threads         OpenMP threads (0: OpenMP default)
 )" + periodic_config_help() + "Contact-law registry:\n" + describe_contact_laws();
 }

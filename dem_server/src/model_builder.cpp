@@ -39,10 +39,20 @@ double critical_step(const ParticleStore& particles, const DemConfig& c, const s
 
 }  // namespace
 
+TriaxialControl triaxial_confinement(const TriaxialConfig& config, double max_strain_rate) {
+  return {.confining_stress = config.confining_stress, .gain = config.servo_gain, .max_strain_rate = max_strain_rate, .platen_speed = std::nullopt};
+}
+
+TriaxialControl triaxial_shearing(const TriaxialConfig& config, double max_strain_rate, double initial_height) {
+  TriaxialControl control = triaxial_confinement(config, max_strain_rate);
+  control.platen_speed = 0.5 * config.strain_rate * initial_height;  // dH/dt = -rate H0, the centre stays put
+  return control;
+}
+
 DemModel build_model(const DemConfig& c) {
   DemModel model;
   // A prepared sample is bonded after its preparation (PFC order), not at the first rebuild.
-  const bool prepared = c.periodic && (c.particles.generator == "radius_expansion" || c.periodic->consolidation);
+  const bool prepared = (c.periodic && (c.particles.generator == "radius_expansion" || c.periodic->consolidation)) || c.triaxial;
   model.simulation = std::make_unique<Simulation>(SimulationSettings{.particle_law = c.contact,
                                                                      .gravity = c.gravity,
                                                                      .local_damping = c.local_damping,
@@ -92,23 +102,25 @@ DemModel build_model(const DemConfig& c) {
     model.dt = c.timestep.fraction_of_critical * model.dt_critical;
   }
 
-  // 4. Preparation of a periodic REV. The critical step above used the start
-  // radii of a radius expansion; the grown packing's step is taken again.
-  if (c.periodic) {
-    model.max_strain_rate = c.periodic->max_strain_rate.value_or(1e-4 / model.dt);
-    if (prepared) {
-      const double fraction = c.timestep.dt ? *c.timestep.dt / model.dt_critical : c.timestep.fraction_of_critical;
-      if (c.particles.generator == "radius_expansion") {
-        // Radii grow by the multiplier: the stable step of the final packing, for the consolidation.
-        ParticleStore grown = sim.particles();
-        for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, c.particles.final_radius[std::size_t(grown.id[i])]);
-        model.dt_critical = critical_step(grown, c, sim.walls());
-        model.dt = c.timestep.dt ? std::min(*c.timestep.dt, model.dt_critical) : fraction * model.dt_critical;
-        model.max_strain_rate = c.periodic->max_strain_rate.value_or(1e-4 / model.dt);
-      }
-      model.preparation = prepare_sample(sim, *c.periodic, c.particles.final_radius, c.particles.expansion, fraction, model.dt, model.max_strain_rate);
-    }
+  // 4. Preparation of a periodic REV or of a sample in six walls. The critical
+  // step above used the start radii of a radius expansion; the grown packing's
+  // step is taken again, for the servo stages.
+  if (!prepared) return model;
+  const double fraction = c.timestep.dt ? *c.timestep.dt / model.dt_critical : c.timestep.fraction_of_critical;
+  if (c.particles.generator == "radius_expansion") {
+    ParticleStore grown = sim.particles();
+    for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, c.particles.final_radius[std::size_t(grown.id[i])]);
+    model.dt_critical = critical_step(grown, c, sim.walls());
+    model.dt = c.timestep.dt ? std::min(*c.timestep.dt, model.dt_critical) : fraction * model.dt_critical;
   }
+  // The servo's cap: 1e-4 strain per step unless given.
+  const std::optional<double> max_rate = c.periodic ? c.periodic->max_strain_rate : c.triaxial->max_strain_rate;
+  model.max_strain_rate = max_rate.value_or(1e-4 / model.dt);
+  if (c.periodic)
+    model.preparation = prepare_sample(sim, *c.periodic, c.particles.final_radius, c.particles.expansion, fraction, model.dt, model.max_strain_rate);
+  else
+    model.preparation = confine_in_walls(sim, c.triaxial->walls, triaxial_confinement(*c.triaxial, model.max_strain_rate), c.triaxial->confinement,
+                                         {c.particles.final_radius, c.particles.expansion, fraction}, model.dt);
   return model;
 }
 

@@ -1,5 +1,6 @@
 #include "dfc/dem/particle_store.hpp"
 
+#include <algorithm>
 #include <numbers>
 #include <string>
 
@@ -50,6 +51,18 @@ void ParticleStore::permute(std::span<const std::uint32_t> new_to_old) {
   permute_field(radius, new_to_old);
   permute_field(mass, new_to_old);
   permute_field(inertia, new_to_old);
+}
+
+double sphere_volume_sum(const ParticleStore& particles) noexcept {
+  double solid = 0.0;
+  for (const double r : particles.radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  return solid;
+}
+
+double largest_radius(const ParticleStore& particles) noexcept {
+  double r_max = 0.0;
+  for (const double r : particles.radius) r_max = std::max(r_max, r);
+  return r_max;
 }
 
 }  // namespace dfc::dem

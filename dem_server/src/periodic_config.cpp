@@ -63,13 +63,10 @@ PeriodicConfig read_periodic_config(ConfigReader cfg) {
     servo->finish();
   }
   if (auto cons = cfg.optional_child("consolidation")) {
-    ConsolidationSpec s;
     ConfigReader& r = *cons;
+    ConsolidationSpec s;
     s.loading = read_loading(r, {"isotropic", "k0"});
-    s.tolerance = r.number("tolerance", 0.01, Bounds{0.0, 1.0, true});
-    s.unbalanced_force_ratio = r.number("unbalanced_force_ratio", 0.01, Bounds{0.0, 1.0, true});
-    s.max_steps = r.integer("max_steps", 200000, 1);
-    s.check_every = r.integer("check_every", 100, 1);
+    static_cast<EquilibriumTarget&>(s) = read_equilibrium_target(r);
     r.finish();
     c.consolidation = s;
   }

@@ -123,18 +123,18 @@ ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, con
   return out;
 }
 
-ExpansionReport expand_radii(Simulation& sim, std::span<const double> final_radius, const RadiusExpansionSpec& spec, double fraction_of_critical) {
-  if (!sim.periodic_cell()) throw UserError("radius expansion needs a periodic cell");
+ExpansionReport expand_radii(Simulation& sim, std::span<const double> final_radius, const RadiusExpansionSpec& spec, double fraction_of_critical,
+                             double volume) {
   ExpansionReport report;
   for (int stage = 1; stage <= spec.stages; ++stage) {
     ParticleStore& p = sim.particles_for_edit();
     for (std::size_t i = 0; i < p.size(); ++i) p.set_radius(i, stage_radius(final_radius[std::size_t(p.id[i])], spec.multiplier, stage, spec.stages));
-    if (stage == spec.stages) report.porosity_geometric = cell_porosity(p, *sim.periodic_cell());
+    if (stage == spec.stages) report.porosity_geometric = 1.0 - sphere_volume_sum(p) / volume;
     const double dt = fraction_of_critical * sim.critical_timestep();
     for (std::int64_t s = 0; s < spec.relax_steps; ++s) sim.step(dt);
     report.steps += spec.relax_steps;
   }
-  report.porosity_relaxed = cell_porosity(sim.particles(), *sim.periodic_cell());
+  report.porosity_relaxed = 1.0 - sphere_volume_sum(sim.particles()) / volume;
   return report;
 }
 

@@ -8,11 +8,23 @@
 
 namespace dfc::dem {
 
+namespace {
+
+/// Bonds within the bond gap, on the prepared packing (one step installs them).
+std::int64_t install_bonds(Simulation& sim, double dt) {
+  if (!sim.settings().particle_law.bonded()) return 0;
+  sim.install_bonds_now();
+  sim.step(dt);
+  return sim.bond_counts().intact;
+}
+
+}  // namespace
+
 PreparationReport prepare_sample(Simulation& sim, const PeriodicConfig& config, std::span<const double> final_radius,
                                  const RadiusExpansionSpec& expansion, double fraction_of_critical, double dt, double max_strain_rate) {
   PreparationReport report;
   // 1. Radius expansion (unbonded).
-  if (!final_radius.empty()) report.expansion = expand_radii(sim, final_radius, expansion, fraction_of_critical);
+  if (!final_radius.empty()) report.expansion = expand_radii(sim, final_radius, expansion, fraction_of_critical, sim.periodic_cell()->volume());
 
   // 2. Servo consolidation: until the stress is within tolerance AND the
   // packing is in equilibrium, checked every check_every steps.
@@ -20,16 +32,13 @@ PreparationReport prepare_sample(Simulation& sim, const PeriodicConfig& config, 
     const ConsolidationSpec& c = *config.consolidation;
     const CellServo servo = make_servo(c.loading, config.servo_gain, max_strain_rate);
     CellStress stress;
-    while (report.consolidation_steps < c.max_steps) {
+    const EquilibriumRun run = run_to_equilibrium(sim, c, [&] {
       stress = servo_step(sim, servo, dt);
-      ++report.consolidation_steps;
-      if (report.consolidation_steps % c.check_every != 0) continue;
-      report.stress_error = servo.relative_error(stress);
-      if (report.stress_error <= c.tolerance && measure(sim).unbalanced_force_ratio <= c.unbalanced_force_ratio) {
-        report.consolidated = true;
-        break;
-      }
-    }
+      return servo.relative_error(stress);
+    });
+    report.consolidated = run.reached;
+    report.consolidation_steps = run.steps;
+    report.stress_error = run.stress_error;
     sim.set_cell_strain_rate({});
     if (!report.consolidated) {
       std::ostringstream msg;
@@ -41,13 +50,37 @@ PreparationReport prepare_sample(Simulation& sim, const PeriodicConfig& config, 
     report.stress = stress.diagonal();
   }
 
-  // 3. Bonds within the bond gap, on the prepared packing (one step installs them).
-  if (sim.settings().particle_law.bonded()) {
-    sim.install_bonds_now();
-    sim.step(dt);
-    report.bonds_installed = sim.bond_counts().intact;
-  }
+  report.bonds_installed = install_bonds(sim, dt);
   report.porosity = cell_porosity(sim.particles(), *sim.periodic_cell());
+  return report;
+}
+
+PreparationReport confine_in_walls(Simulation& sim, const TriaxialWalls& box, const TriaxialControl& control, const EquilibriumTarget& target,
+                                   const ExpansionStage& expansion, double dt) {
+  PreparationReport report;
+  const BoxAxes axes = box_axes(box_vertices(sim.walls(), box));
+  if (!expansion.final_radius.empty())
+    report.expansion = expand_radii(sim, expansion.final_radius, expansion.spec, expansion.fraction_of_critical,
+                                    box_size(sim.walls(), box, axes).volume());
+  BoxStress stress;
+  const EquilibriumRun run = run_to_equilibrium(sim, target, [&] {
+    stress = triaxial_step(sim, box, axes, control, dt);
+    return confinement_error(stress, control);
+  });
+  for (const std::size_t w : box.in_order()) sim.set_wall_velocity(w, {});
+  report.consolidated = run.reached;
+  report.consolidation_steps = run.steps;
+  report.stress_error = run.stress_error;
+  if (!run.reached) {
+    std::ostringstream msg;
+    msg << "triaxial.confinement did not reach the confining stress in " << target.max_steps << " steps (relative stress error "
+        << run.stress_error << ", unbalanced force ratio " << measure(sim).unbalanced_force_ratio
+        << "); raise triaxial.confinement.max_steps or triaxial.servo.max_strain_rate_per_s, or loosen the tolerance";
+    throw SolverError(msg.str());
+  }
+  report.stress = {0.5 * (stress.wall[2] + stress.wall[3]), 0.5 * (stress.wall[4] + stress.wall[5]), stress.axial()};
+  report.bonds_installed = install_bonds(sim, dt);
+  report.porosity = box_porosity(sim.particles(), box_size(sim.walls(), box, axes));
   return report;
 }
 

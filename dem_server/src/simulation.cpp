@@ -14,14 +14,6 @@
 
 namespace dfc::dem {
 
-namespace {
-double largest_radius(const ParticleStore& p) {
-  double r_max = 0.0;
-  for (const double r : p.radius) r_max = std::max(r_max, r);
-  return r_max;
-}
-}  // namespace
-
 Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)) {
   if (settings_.particle_law.info == nullptr) throw UserError("the simulation needs a particle contact law");
   if (!(settings_.local_damping >= 0.0 && settings_.local_damping < 1.0)) throw UserError("local damping must be in [0, 1)");
@@ -59,6 +51,12 @@ void Simulation::set_vertex_velocities(std::size_t wall, std::span<const Vec3> v
     throw UserError("wall \"" + w.name + "\" has " + std::to_string(w.vertex_count()) + " vertices but " + std::to_string(velocity.size()) +
                     " velocities were given");
   std::copy(velocity.begin(), velocity.end(), w.vertex_velocity.begin());
+}
+
+void Simulation::set_wall_velocity(std::size_t wall, const Vec3& velocity) {
+  Wall& w = walls_.at(wall);
+  if (w.motion != WallMotion::prescribed) throw UserError("wall \"" + w.name + "\" follows the continuum; its velocity cannot be prescribed");
+  w.prescribed_velocity = velocity;
 }
 
 double Simulation::critical_timestep() const {

@@ -22,7 +22,11 @@
 //                              compression positive, averaged over the advance
 //   cell_strain_xx/yy/zz       engineering strain of the cell edges from the end of preparation,
 //                              (L0 - L)/L0, compression positive, at the end of the advance
-//   porosity                   1 - sphere volume / cell volume (periodic cell only)
+//   porosity                   1 - sphere volume / cell (or triaxial box) volume
+//   axial_stress_pa, lateral_stress_pa, deviatoric_stress_pa, axial_strain, volumetric_strain
+//                              with a "triaxial" section (triaxial_walls.hpp): platen stress, mean
+//                              lateral wall stress and their difference (averaged over the advance),
+//                              (H0 - H)/H0 and (V0 - V)/V0 from the end of the confinement
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -58,6 +62,12 @@ class DemBackend final : public protocol::SolverBackend {
   std::optional<std::size_t> interface_wall_;
   std::optional<PlatenAxis> ucs_axis_;        ///< with a "ucs" section: the platens at configure
   std::optional<CellServo> cell_servo_;       ///< with a "periodic" cell: its loading
+  struct TriaxialRun {
+    BoxAxes axes;
+    BoxSize reference;        ///< at the end of the confinement: H0, W0, V0 of the strains
+    TriaxialControl control;  ///< shearing stage
+  };
+  std::optional<TriaxialRun> triaxial_;       ///< with a "triaxial" section
   Vec3 cell_reference_length_;                ///< m, cell edges at the end of preparation
   Vec3 pile_reference_;                       ///< m, a pile vertex at configure
   nlohmann::json averages_ = nlohmann::json::object();  ///< advance-averaged monitors of the last advance

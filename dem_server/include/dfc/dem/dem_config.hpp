@@ -11,8 +11,10 @@
 
 #include "dfc/dem/bed_generator.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
+#include "dfc/dem/equilibrium_target.hpp"
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/radius_expansion.hpp"
+#include "dfc/dem/triaxial_walls.hpp"
 #include "dfc/dem/wall.hpp"
 #include "dfc/dem/wall_builders.hpp"
 
@@ -51,6 +53,18 @@ struct UcsConfig {
   std::int64_t start_step = 0;        ///< first step of the platens' motion when strain_rate is given
 };
 
+/// Triaxial compression in six rigid walls (docs/dem_ucs.md §6, triaxial_walls.hpp):
+/// confinement of every wall to sigma_3 (preparation), bonds, then the platens
+/// close at the strain rate while the lateral walls hold sigma_3.
+struct TriaxialConfig {
+  TriaxialWalls walls;              ///< indices into DemConfig::walls (the simulation adds them first, in order)
+  double confining_stress = 0.0;    ///< Pa, sigma_3
+  double strain_rate = 0.0;         ///< 1/s, axial, compression positive
+  double servo_gain = 0.5;
+  std::optional<double> max_strain_rate;  ///< 1/s, cap of a servo-controlled wall pair; default 1e-4 / dt
+  EquilibriumTarget confinement;    ///< when the confinement stage is finished
+};
+
 struct TimestepConfig {
   double fraction_of_critical = 0.2;
   std::optional<double> dt;  ///< s, fixed step instead of a fraction
@@ -68,6 +82,7 @@ struct DemConfig {
   std::vector<WallConfig> walls;
   std::optional<PileConfig> pile;
   std::optional<UcsConfig> ucs;
+  std::optional<TriaxialConfig> triaxial;
   std::optional<PeriodicConfig> periodic;
   int threads = 0;
 };

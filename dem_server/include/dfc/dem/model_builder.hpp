@@ -18,12 +18,19 @@ struct DemModel {
   double dt_critical = 0.0;              ///< s, including the wall_contact law (the coupling wall comes later)
   std::size_t removed_particles = 0;     ///< generated spheres dropped because they overlapped a wall or the pile
   std::optional<PreparationReport> preparation;  ///< periodic cell with radius expansion or consolidation
-  double max_strain_rate = 0.0;          ///< 1/s, the cell servo's cap (periodic cell)
+  double max_strain_rate = 0.0;          ///< 1/s, the servo's cap (periodic cell, triaxial walls)
 };
+
+/// The servo of a triaxial section's confinement stage: every wall at sigma_3.
+[[nodiscard]] TriaxialControl triaxial_confinement(const TriaxialConfig& config, double max_strain_rate);
+/// ... and of its shearing stage: the platens close at rate H0/2 each (H0 the
+/// platen separation at the end of the confinement), the lateral walls at sigma_3.
+[[nodiscard]] TriaxialControl triaxial_shearing(const TriaxialConfig& config, double max_strain_rate, double initial_height);
 
 /// Throws ConfigError("timestep.dt_s") if a fixed dt exceeds the critical step.
 /// With a periodic cell that has radius expansion or a consolidation, runs the
-/// preparation (sample_preparation.hpp) before returning.
+/// preparation (sample_preparation.hpp) before returning; so does a triaxial
+/// section (confinement in the walls, then bonds).
 [[nodiscard]] DemModel build_model(const DemConfig& config);
 
 }  // namespace dfc::dem

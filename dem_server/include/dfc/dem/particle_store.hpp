@@ -39,4 +39,11 @@ struct ParticleStore {
   void permute(std::span<const std::uint32_t> new_to_old);
 };
 
+/// m3, sum of the sphere volumes 4/3 pi r^3 (overlaps not subtracted: PFC's
+/// convention for the porosity of a sample).
+[[nodiscard]] double sphere_volume_sum(const ParticleStore& particles) noexcept;
+
+/// m, the largest radius (0 without particles).
+[[nodiscard]] double largest_radius(const ParticleStore& particles) noexcept;
+
 }  // namespace dfc::dem

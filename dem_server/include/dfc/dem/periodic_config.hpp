@@ -8,6 +8,7 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/dem/cell_servo.hpp"
+#include "dfc/dem/equilibrium_target.hpp"
 #include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/radius_expansion.hpp"
 
@@ -24,12 +25,9 @@ struct CellLoading {
   Vec3 strain_rate;         ///< 1/s, strain_rate mode: edge rates, extension positive
 };
 
-struct ConsolidationSpec {
-  CellLoading loading;              ///< isotropic or k0
-  double tolerance = 0.01;          ///< relative stress error at which the target counts as reached
-  double unbalanced_force_ratio = 0.01;  ///< and the packing as in equilibrium
-  std::int64_t max_steps = 200000;
-  std::int64_t check_every = 100;
+/// The stopping rule (tolerance, unbalanced force ratio, steps) and the loading.
+struct ConsolidationSpec : EquilibriumTarget {
+  CellLoading loading;  ///< isotropic or k0
 };
 
 struct PeriodicConfig {

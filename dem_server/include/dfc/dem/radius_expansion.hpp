@@ -1,5 +1,6 @@
 #pragma once
-// Sample generation by radius expansion in a periodic cell (docs/dem_periodic.md §5).
+// Sample generation by radius expansion in a periodic cell (docs/dem_periodic.md §5)
+// or in a box of fixed walls (docs/dem_ucs.md §6).
 //
 // The method of the Zheng–Ciantia examples (reference/dem-physics.md §3.7:
 // "radius expansion with multiplier 1.6 applied in 10 steps"; PFC's
@@ -57,9 +58,10 @@ struct ExpansionReport {
 };
 
 /// Step 3 on a simulation holding the packing (ids = indices into final_radius)
-/// in a periodic cell. Each relaxation runs at fraction_of_critical of the
-/// critical step of the current radii.
+/// in a container of `volume` (m3: the periodic cell, or the box of fixed walls
+/// the spheres were placed in). Each relaxation runs at fraction_of_critical of
+/// the critical step of the current radii.
 ExpansionReport expand_radii(Simulation& simulation, std::span<const double> final_radius, const RadiusExpansionSpec& spec,
-                             double fraction_of_critical);
+                             double fraction_of_critical, double volume);
 
 }  // namespace dfc::dem

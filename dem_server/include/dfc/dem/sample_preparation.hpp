@@ -1,5 +1,6 @@
 #pragma once
 // Preparation of a periodic REV before the coupled run (docs/dem_periodic.md §5),
+// or of a sample confined in six walls (docs/dem_ucs.md §6),
 // in PFC's order (Potyondy & Cundall 2004 §3.1; the Zheng–Ciantia examples,
 // reference/dem-physics.md §3.7): radius expansion to the target porosity,
 // servo consolidation to the target stress, then bonds within the bond gap.
@@ -10,6 +11,7 @@
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/radius_expansion.hpp"
 #include "dfc/dem/simulation.hpp"
+#include "dfc/dem/triaxial_walls.hpp"
 
 namespace dfc::dem {
 
@@ -18,8 +20,9 @@ struct PreparationReport {
   bool consolidated = false;           ///< the consolidation target was met (false also without a consolidation)
   std::int64_t consolidation_steps = 0;
   double stress_error = 0.0;           ///< relative, at the end of consolidation
-  Vec3 stress;                         ///< Pa, cell stress diagonal at the end (compression positive)
-  double porosity = 0.0;               ///< at the end of preparation
+  Vec3 stress;                         ///< Pa, compression positive, at the end: the cell stress diagonal, or in
+                                       ///< walls the two lateral pairs' and the platens' stresses
+  double porosity = 0.0;               ///< at the end of preparation (of the cell, or of the walls' box)
   std::int64_t bonds_installed = 0;
 };
 
@@ -29,5 +32,20 @@ struct PreparationReport {
 /// of the consolidation; SolverError if it does not converge in max_steps.
 PreparationReport prepare_sample(Simulation& simulation, const PeriodicConfig& config, std::span<const double> final_radius,
                                  const RadiusExpansionSpec& expansion, double fraction_of_critical, double dt, double max_strain_rate);
+
+/// A radius expansion to run first: the final radii by particle id (empty: none).
+struct ExpansionStage {
+  std::span<const double> final_radius;
+  const RadiusExpansionSpec& spec;
+  double fraction_of_critical = 0.2;
+};
+
+/// A sample in six walls (triaxial_walls.hpp): radius expansion in the fixed
+/// walls if `expansion` has final radii, every wall servo-controlled to the
+/// confining stress until `target` is met (SolverError after max_steps, naming
+/// the triaxial.confinement keys), the walls stopped, then the bonds of a
+/// bonded law installed. `control.platen_speed` must be empty.
+PreparationReport confine_in_walls(Simulation& simulation, const TriaxialWalls& box, const TriaxialControl& control,
+                                   const EquilibriumTarget& target, const ExpansionStage& expansion, double dt);
 
 }  // namespace dfc::dem

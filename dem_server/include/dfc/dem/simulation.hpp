@@ -65,6 +65,9 @@ class Simulation {
   void replace_wall(std::size_t index, Wall wall);
   /// Velocities of a coupling wall's vertices for the following steps.
   void set_vertex_velocities(std::size_t wall, std::span<const Vec3> velocity);
+  /// Translation velocity of a prescribed (rigid) wall from the next step on,
+  /// e.g. set by a servo; UserError for a coupling wall.
+  void set_wall_velocity(std::size_t wall, const Vec3& velocity);
 
   // Running -------------------------------------------------------------------
   /// s, see timestep.hpp.
