@@ -14,12 +14,15 @@ the second is what the coupler records: "<slot>_<monitor>" and its own columns):
                                 side dem or continuum, axis x, y, z)
   unbalanced_force.png         unbalanced-force ratios against time, log scale
                                (ufr_<side> | <side>_unbalanced_force_ratio)
-  stress_strain.png            axial stress against axial strain of a platen test (UCS)
-                               (dem_axial_strain, dem_axial_stress_pa), with the peak marked
+  stress_strain.png            axial stress against axial strain of a compression test
+                               (dem_axial_strain, dem_axial_stress_pa), with the peak marked;
+                               of a triaxial test (dem_deviatoric_stress_pa recorded) the
+                               deviator q = sigma_a - sigma_3 instead
 With several results files (e.g. the variants of one scenario, or the same pile
 run against different continua) it writes overlays instead, one curve per run
 labelled by the run's folder name:
-  stress_strain_overlay.png    axial stress-strain of every run, peaks marked, and
+  stress_strain_overlay.png    axial stress-strain of every run (the deviator q if every run
+                               recorded one), peaks marked, and
                                prints per run: peak stress, strain at peak, initial
                                stiffness (least-squares slope of the pre-peak points
                                below 30 % of the peak) and the spread of both
@@ -181,25 +184,34 @@ def plot_stress_strain(series, out_dir):
     if columns is None:
         return None
     strain, stress = columns
+    triaxial = is_triaxial(series)
     peak = int(np.argmax(stress))
     fig, ax = plt.subplots(figsize=(6, 4.5))
     ax.plot(strain * 100, stress / 1e3, color="tab:blue")
     ax.plot([strain[peak] * 100], [stress[peak] / 1e3], "o", color="tab:red", label=f"peak {stress[peak] / 1e3:.1f} kPa")
     ax.set_xlabel("axial strain [%]")
-    ax.set_ylabel("axial stress [kPa]")
+    ax.set_ylabel("deviator stress q [kPa]" if triaxial else "axial stress [kPa]")
     ax.grid(True, alpha=0.3)
     ax.legend()
-    ax.set_title("Uniaxial compression")
+    ax.set_title("Triaxial compression" if triaxial else "Uniaxial compression")
     return save(fig, out_dir, "stress_strain.png")
 
 
-def stress_strain_columns(series):
+def stress_strain_columns(series, deviator=True):
+    """(axial strain, stress) of a compression test: the deviator q = sigma_a - sigma_3
+    of a triaxial test when recorded and `deviator`, else the axial stress."""
     strain = column(series, "axial_strain", "dem_axial_strain")
-    stress = column(series, "axial_stress_pa", "dem_axial_stress_pa")
+    stress = column(series, "deviatoric_stress_pa", "dem_deviatoric_stress_pa") if deviator else None
+    if stress is None:
+        stress = column(series, "axial_stress_pa", "dem_axial_stress_pa")
     if strain is None or stress is None:
         return None
     n = min(len(strain), len(stress))
     return strain[:n], stress[:n]
+
+
+def is_triaxial(series):
+    return column(series, "deviatoric_stress_pa", "dem_deviatoric_stress_pa") is not None
 
 
 def initial_stiffness(strain, stress):
@@ -220,7 +232,9 @@ def spread(values):
 def plot_overlays(runs, out_dir):
     """runs: [(label, series)]; one curve per run."""
     written = []
-    curves = [(label, stress_strain_columns(series)) for label, series in runs]
+    # The deviator when every run recorded one (triaxial tests), else the axial stress of all.
+    deviator = all(is_triaxial(series) for _, series in runs)
+    curves = [(label, stress_strain_columns(series, deviator)) for label, series in runs]
     curves = [(label, c) for label, c in curves if c is not None]
     if curves:
         fig, ax = plt.subplots(figsize=(6.5, 4.8))
@@ -236,7 +250,7 @@ def plot_overlays(runs, out_dir):
             ax.plot([strain[peak] * 100], [stress[peak] / 1e3], "o", color=line.get_color())
         print(f"spread (max - min) / mean: peak {spread(peaks) * 100:.2f} %, initial stiffness {spread(stiffnesses) * 100:.2f} %")
         ax.set_xlabel("axial strain [%]")
-        ax.set_ylabel("axial stress [kPa]")
+        ax.set_ylabel("deviator stress q [kPa]" if deviator else "axial stress [kPa]")
         ax.grid(True, alpha=0.3)
         ax.legend()
         ax.set_title("Stress-strain, " + ", ".join(label for label, _ in curves))

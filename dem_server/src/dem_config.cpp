@@ -481,7 +481,7 @@ std::string dem_config_help() {
                    the platens must then have no velocity_m_s), "start_step":0}
                   adds the monitors axial_stress_pa (platen force / area, compression positive, averaged over
                   the advance and over both platens) and axial_strain ((H0 - H)/H0, H the platen separation)
-  triaxial        triaxial compression in six rigid plane walls (docs/dem_ucs.md §6):
+  triaxial        triaxial compression in six rigid plane walls (docs/dem_triaxial_walls.md):
                   {"top_wall", "bottom_wall", "lateral_walls":[first, second of one pair, first, second of the
                    other] (wall names; the three pairs face each other along perpendicular directions),
                    "confining_stress_pa" (sigma_3, required), "strain_rate_per_s" (axial, required: each platen

@@ -11,13 +11,10 @@
 #include "command_runner.hpp"
 #include "dfc/common/hdf5_file.hpp"
 #include "e2e_paths.hpp"
+#include "results_series.hpp"
 
 namespace dfc::testing {
 namespace {
-
-std::vector<double> series(const std::filesystem::path& results, const std::string& column) {
-  return h5::read_f64(h5::File::open_read_only(results), "/timeseries/" + column);
-}
 
 double mean_of_tail(const std::vector<double>& values, double fraction) {
   const auto first = values.end() - static_cast<std::ptrdiff_t>(double(values.size()) * fraction);

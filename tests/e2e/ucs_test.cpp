@@ -9,13 +9,10 @@
 #include "command_runner.hpp"
 #include "dfc/common/hdf5_file.hpp"
 #include "e2e_paths.hpp"
+#include "results_series.hpp"
 
 namespace dfc::testing {
 namespace {
-
-std::vector<double> series(const std::filesystem::path& results, const std::string& column) {
-  return h5::read_f64(h5::File::open_read_only(results), "/timeseries/" + column);
-}
 
 // A brittle bonded sample under displacement control: the axial stress rises
 // to a peak (UCS) where shear bond failures localise, then drops as the

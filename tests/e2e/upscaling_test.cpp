@@ -12,13 +12,10 @@
 #include "command_runner.hpp"
 #include "dfc/common/hdf5_file.hpp"
 #include "e2e_paths.hpp"
+#include "results_series.hpp"
 
 namespace dfc::testing {
 namespace {
-
-std::vector<double> series(const std::filesystem::path& results, const std::string& column) {
-  return h5::read_f64(h5::File::open_read_only(results), "/timeseries/" + column);
-}
 
 /// Runs every variant of an e2e scenario into a fresh folder; returns the folder.
 std::filesystem::path run_variants(const std::string& scenario) {

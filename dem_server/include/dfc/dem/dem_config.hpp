@@ -53,7 +53,7 @@ struct UcsConfig {
   std::int64_t start_step = 0;        ///< first step of the platens' motion when strain_rate is given
 };
 
-/// Triaxial compression in six rigid walls (docs/dem_ucs.md §6, triaxial_walls.hpp):
+/// Triaxial compression in six rigid walls (docs/dem_triaxial_walls.md, triaxial_walls.hpp):
 /// confinement of every wall to sigma_3 (preparation), bonds, then the platens
 /// close at the strain rate while the lateral walls hold sigma_3.
 struct TriaxialConfig {

@@ -1,6 +1,6 @@
 #pragma once
 // Sample generation by radius expansion in a periodic cell (docs/dem_periodic.md §5)
-// or in a box of fixed walls (docs/dem_ucs.md §6).
+// or in a box of fixed walls (docs/dem_triaxial_walls.md).
 //
 // The method of the Zheng–Ciantia examples (reference/dem-physics.md §3.7:
 // "radius expansion with multiplier 1.6 applied in 10 steps"; PFC's

@@ -1,6 +1,6 @@
 #pragma once
 // Triaxial compression of a cuboid sample between six rigid plane walls: two
-// platens and two opposite pairs of lateral walls (docs/dem_ucs.md §6).
+// platens and two opposite pairs of lateral walls (docs/dem_triaxial_walls.md).
 //
 // This is PFC's rigid-wall triaxial test (Itasca PFC "servo mechanism";
 // Potyondy & Cundall 2004 §3.1): the lateral walls are servo-controlled to the
