@@ -11,6 +11,10 @@
 
 namespace dfc::dem {
 
+void Simulation::compute_pair_constants() {
+  std::visit([&](const auto& law) { dfc::dem::compute_pair_constants(law, particles_, pairs_); }, settings_.particle_law.law);
+}
+
 bool Simulation::compute_contact_forces(double dt) {
   start_particle_loads(particles_, settings_.gravity, threads_);
   bool excessive = std::visit([&](const auto& law) {

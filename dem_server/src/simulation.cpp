@@ -134,6 +134,7 @@ void Simulation::rebuild() {
   pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
   restore_history(pairs_, particles_, pair_archive, threads_);
   if (install) install_bonds();
+  compute_pair_constants();
 
   bool with_couple = settings_.particle_law.has_couple();
   std::size_t offset = pairs_.size();

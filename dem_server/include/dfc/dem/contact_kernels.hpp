@@ -26,6 +26,30 @@ namespace dfc::dem {
 /// the run has become unstable (soft contacts stay at a few per cent).
 inline constexpr double max_overlap_fraction = 0.5;
 
+/// The two bodies of pair (i, j) as a law sees them: radii and effective mass.
+inline void set_pair_bodies(const ParticleStore& p, std::uint32_t i, std::uint32_t j, ContactKinematics& kin) noexcept {
+  kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+  kin.radius_first = p.radius[i];
+  kin.radius_second = p.radius[j];
+}
+
+/// Sets pairs.constants for the current lists (laws without pair constants: none).
+template <ContactLawKernel Law>
+void compute_pair_constants(const Law& law, const ParticleStore& p, PairContacts& pairs) {
+  if constexpr (HasPairConstants<Law>) {
+    pairs.constants_stride = Law::constants_size;
+    pairs.constants.resize(pairs.size() * Law::constants_size);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      ContactKinematics kin;
+      set_pair_bodies(p, pairs.first[k], pairs.second[k], kin);
+      law.pair_constants(kin, pairs.constants.data() + k * Law::constants_size);
+    }
+  } else {
+    pairs.constants_stride = 0;
+    pairs.constants.clear();
+  }
+}
+
 /// Evaluates every pair candidate into outputs[0, pairs.size()), and adds
 /// each contact's force and moment to the bodies Incidence::direct marks (the
 /// prefix of their sums, particle_loads.hpp; p.force/moment must have been
@@ -55,8 +79,7 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         xj_arm = p.position[j] + out.shift[k];
       }
       const std::uint8_t direct = incidence.direct[k];
-      // The same terms the gather would add (a separated pair adds zeros,
-      // which can still turn a -0 component of m g into +0).
+      // The same terms the gather would add.
       const auto add_to_bodies = [&](const Vec3& force, const Vec3& point, const Vec3& couple) {
         if (direct & Incidence::direct_first) {
           add_contact_load(p.force[i], p.moment[i], force, point - xi);
@@ -77,7 +100,11 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         out.point[k] = xi;
         if constexpr (Law::has_couple) out.couple[k] = Vec3{};
         law.separate(history);
-        add_to_bodies(Vec3{}, xi, Vec3{});
+        // The gather adds zeros here. Of those only the first body's +0 force
+        // can change a bit (a -0 component of m g, from a -0 gravity component,
+        // becomes +0); the second body's -0 leaves any value as it is, and so
+        // do zero moments (a moment sum starts at +0, so it is never -0).
+        if (direct & Incidence::direct_first) p.force[i] += Vec3{};
         continue;
       }
       const double dist = std::sqrt(dist2);
@@ -96,11 +123,11 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
       kin.relative_velocity = vj - vi;
       if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
       kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
-      kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-      kin.radius_first = ri;
-      kin.radius_second = rj;
+      set_pair_bodies(p, i, j, kin);
       kin.dt = dt;
-      const ContactForce f = law.evaluate(kin, history);
+      ContactForce f;
+      if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
+      else f = law.evaluate(kin, history);
       out.force[k] = f.on_first;
       out.point[k] = point;
       if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;

@@ -25,9 +25,14 @@ struct PairContacts {
   std::vector<std::uint32_t> second;
   std::size_t stride = 0;       ///< history doubles per contact (the law's history_size)
   std::vector<double> history;  ///< size() * stride, row per contact
+  /// The law's pair constants (contact_model.hpp HasPairConstants), row per
+  /// contact of constants_stride doubles; set at every list rebuild.
+  std::size_t constants_stride = 0;
+  std::vector<double> constants;
 
   [[nodiscard]] std::size_t size() const noexcept { return first.size(); }
   [[nodiscard]] double* row(std::size_t k) noexcept { return history.data() + k * stride; }
+  [[nodiscard]] const double* constants_row(std::size_t k) const noexcept { return constants.data() + k * constants_stride; }
 };
 
 /// Particle–facet candidates of one wall, sorted by particle then facet.

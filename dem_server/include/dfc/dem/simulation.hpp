@@ -110,6 +110,8 @@ class Simulation {
   void append_persistent_pairs(const HistoryArchive& archive);
   /// Bonds every pair with a surface gap <= the law's bond gap (first rebuild).
   void install_bonds();
+  /// The particle law's pair constants for the new lists (contact_forces.cpp).
+  void compute_pair_constants();
   /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
   bool compute_contact_forces(double dt);
   void move_walls(double dt);
