@@ -95,7 +95,8 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
       const double rj = p.radius[j];
       const double reach = ri + rj;
       const double dist2 = norm2(d);
-      if (!Law::acts_across_gap && dist2 >= reach * reach) {
+      // A pair that carries nothing this step: zero outputs, history reset.
+      const auto separated = [&] {
         out.force[k] = Vec3{};
         out.point[k] = xi;
         if constexpr (Law::has_couple) out.couple[k] = Vec3{};
@@ -105,9 +106,19 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         // becomes +0); the second body's -0 leaves any value as it is, and so
         // do zero moments (a moment sum starts at +0, so it is never -0).
         if (direct & Incidence::direct_first) p.force[i] += Vec3{};
+      };
+      if (!Law::acts_across_gap && dist2 >= reach * reach) {
+        separated();
         continue;
       }
       const double dist = std::sqrt(dist2);
+      // The same test as the law's own (overlap <= 0), so the result is the law's.
+      if constexpr (SkipsIdleGaps<Law>) {
+        if (reach - dist <= 0.0 && Law::idle_across_gap(history)) {
+          separated();
+          continue;
+        }
+      }
       // Coincident centres have no direction; any fixed one keeps the run deterministic.
       const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
       ContactKinematics kin;

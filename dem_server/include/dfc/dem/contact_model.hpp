@@ -91,4 +91,13 @@ concept HasPairConstants = ContactLawKernel<Law> && requires(const Law law, cons
   { law.evaluate(k, constants, history) } -> std::same_as<ContactForce>;
 };
 
+/// Optional part of a law that acts across a gap (a bond): true when this
+/// contact's history says it carries nothing while the surfaces are apart
+/// (e.g. no intact bond), where evaluate would return zero and only call
+/// separate; the pair loop then skips the contact's kinematics.
+template <class Law>
+concept SkipsIdleGaps = ContactLawKernel<Law> && Law::acts_across_gap && requires(const double* history) {
+  { Law::idle_across_gap(history) } -> std::same_as<bool>;
+};
+
 }  // namespace dfc::dem

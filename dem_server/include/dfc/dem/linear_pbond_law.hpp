@@ -56,6 +56,10 @@ struct LinearPbondLaw {
     return {kn + kbn, kn / kratio + kbn / bond_kratio};
   }
 
+  /// SkipsIdleGaps: without an intact bond a gap carries nothing (evaluate
+  /// returns zero and resets the linear part's history).
+  [[nodiscard]] static bool idle_across_gap(const double* history) noexcept { return bond_state(history) != BondState::intact; }
+
   void separate(double* history) const noexcept {
     for (std::size_t c = linear_offset; c < history_size; ++c) history[c] = 0.0;
   }
@@ -117,6 +121,6 @@ struct LinearPbondLaw {
   }
 };
 
-static_assert(HasPairConstants<LinearPbondLaw>);
+static_assert(HasPairConstants<LinearPbondLaw> && SkipsIdleGaps<LinearPbondLaw>);
 
 }  // namespace dfc::dem
