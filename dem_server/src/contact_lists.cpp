@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 namespace dfc::dem {
 
@@ -33,7 +34,7 @@ void ContactOutputs::resize(std::size_t n, bool with_couple, std::size_t periodi
 }
 
 Incidence build_incidence(std::size_t particle_count, const PairContacts& pairs, std::span<const WallContacts* const> walls,
-                          std::span<const std::size_t> wall_offsets) {
+                          std::span<const std::size_t> wall_offsets, std::size_t pair_chunks) {
   Incidence inc;
   inc.start.assign(particle_count + 1, 0);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -50,6 +51,23 @@ Incidence build_incidence(std::size_t particle_count, const PairContacts& pairs,
     inc.entry[fill[pairs.first[k]]++] = std::uint32_t(k << 1);
     inc.entry[fill[pairs.second[k]]++] = std::uint32_t(k << 1 | 1u);
   }
+  // The pair loop's ranges; a particle's entries in the first range touching
+  // it (its owner) are added there, the prefix of its list up to gather_from.
+  const std::size_t chunks = std::max<std::size_t>(pair_chunks, 1);
+  inc.chunk_start.resize(chunks + 1);
+  for (std::size_t c = 0; c <= chunks; ++c) inc.chunk_start[c] = pairs.size() * c / chunks;
+  constexpr std::size_t no_owner = ~std::size_t{0};
+  std::vector<std::size_t> owner(particle_count, no_owner);
+  inc.gather_from.assign(inc.start.begin(), inc.start.end() - 1);
+  inc.direct.assign(pairs.size(), 0);
+  for (std::size_t c = 0; c < chunks; ++c)
+    for (std::size_t k = inc.chunk_start[c]; k < inc.chunk_start[c + 1]; ++k)
+      for (const auto& [i, bit] : {std::pair{pairs.first[k], Incidence::direct_first}, std::pair{pairs.second[k], Incidence::direct_second}}) {
+        if (owner[i] == no_owner) owner[i] = c;
+        if (owner[i] != c) continue;
+        inc.direct[k] |= bit;
+        ++inc.gather_from[i];
+      }
   for (std::size_t w = 0; w < walls.size(); ++w)
     for (std::size_t k = 0; k < walls[w]->size(); ++k)
       inc.entry[fill[walls[w]->particle[k]]++] = std::uint32_t((wall_offsets[w] + k) << 1);

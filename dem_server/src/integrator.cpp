@@ -1,5 +1,6 @@
 #include "dfc/dem/integrator.hpp"
 #include "dfc/dem/parallel.hpp"
+#include "dfc/dem/particle_loads.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -8,13 +9,10 @@ namespace dfc::dem {
 
 namespace {
 
-/// Periodic: a pair's second body takes its lever arm from its image next to
-/// the first body (contacts.shift); compiled out of the open-space loop.
 template <bool Periodic>
 MotionReport integrate(ParticleStore& p, const Incidence& incidence, const ContactOutputs& contacts, std::span<const Vec3> reference_positions,
                        const MotionSettings& s, int threads) {
   const auto n = static_cast<std::int64_t>(p.size());
-  const bool with_couple = !contacts.couple.empty();
   const double dt = s.dt;
   double max_d2 = 0.0;
   bool finite = true;
@@ -22,24 +20,10 @@ MotionReport integrate(ParticleStore& p, const Incidence& incidence, const Conta
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = std::size_t(ii);
     const Vec3 xi = p.position[i];
-    Vec3 force = p.mass[i] * s.gravity;
-    Vec3 moment;
-    for (std::uint32_t e = incidence.start[i]; e < incidence.start[i + 1]; ++e) {
-      const std::uint32_t entry = incidence.entry[e];
-      const std::uint32_t c = entry >> 1;
-      // The second body of a pair receives the opposite force and couple. A
-      // multiplication by +-1 (exact) instead of a branch: the role is random.
-      const double sign = 1.0 - 2.0 * double(entry & 1u);
-      const Vec3 f = sign * contacts.force[c];
-      force += f;
-      if constexpr (Periodic) {
-        const Vec3 arm = (entry & 1u) != 0 ? contacts.point[c] - (xi + contacts.shift[c]) : contacts.point[c] - xi;
-        moment += cross(arm, f);
-      } else {
-        moment += cross(contacts.point[c] - xi, f);
-      }
-      if (with_couple) moment += sign * contacts.couple[c];
-    }
+    // The pair loop already added the first part of the sum (particle_loads.hpp).
+    Vec3 force = p.force[i];
+    Vec3 moment = p.moment[i];
+    gather_contact_loads<Periodic>(i, xi, incidence, contacts, force, moment);
     p.force[i] = force;
     p.moment[i] = moment;
 

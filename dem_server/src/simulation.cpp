@@ -9,6 +9,7 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/integrator.hpp"
 #include "dfc/dem/neighbour_search.hpp"
+#include "dfc/dem/parallel.hpp"
 #include "dfc/dem/timestep.hpp"
 #include "dfc/dem/wall_forces.hpp"
 
@@ -131,6 +132,7 @@ void Simulation::rebuild() {
   pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
   restore_history(pairs_, particles_, pair_archive, threads_);
   if (install) install_bonds();
+  compute_pair_constants();
 
   bool with_couple = settings_.particle_law.has_couple();
   std::size_t offset = pairs_.size();
@@ -146,7 +148,9 @@ void Simulation::rebuild() {
     with_couple = with_couple || walls_[w].law.has_couple();
   }
   outputs_.resize(offset, with_couple, cell_ ? pairs_.size() : 0);
-  incidence_ = build_incidence(particles_.size(), pairs_, wall_lists, wall_offsets_);
+  // One range of the pair loop per thread where the loop runs in parallel.
+  const std::size_t pair_chunks = std::int64_t(pairs_.size()) >= min_parallel_items ? std::size_t(threads_) : 1;
+  incidence_ = build_incidence(particles_.size(), pairs_, wall_lists, wall_offsets_, pair_chunks);
 
   reference_positions_ = particles_.position;
   reference_vertices_.clear();

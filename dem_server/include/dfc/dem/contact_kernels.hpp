@@ -3,8 +3,9 @@
 //
 // The law is resolved once per step (std::visit in contact_forces.cpp); inside
 // the loop `law.evaluate` is an inlined call on a value type. Each loop writes
-// only its own contact's slots, so it is parallel without atomics and its
-// results do not depend on the thread count.
+// only its own contact's slots (and the pair loop the particle sums its range
+// owns, contact_lists.hpp Incidence), so it is parallel without atomics and
+// its results do not depend on the thread count.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include "dfc/dem/contact_lists.hpp"
 #include "dfc/dem/parallel.hpp"
 #include "dfc/dem/contact_model.hpp"
+#include "dfc/dem/particle_loads.hpp"
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/triangle_geometry.hpp"
@@ -24,61 +26,124 @@ namespace dfc::dem {
 /// the run has become unstable (soft contacts stay at a few per cent).
 inline constexpr double max_overlap_fraction = 0.5;
 
-/// Evaluates every pair candidate into outputs[0, pairs.size()).
+/// The two bodies of pair (i, j) as a law sees them: radii and effective mass.
+inline void set_pair_bodies(const ParticleStore& p, std::uint32_t i, std::uint32_t j, ContactKinematics& kin) noexcept {
+  kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+  kin.radius_first = p.radius[i];
+  kin.radius_second = p.radius[j];
+}
+
+/// Sets pairs.constants for the current lists (laws without pair constants: none).
+template <ContactLawKernel Law>
+void compute_pair_constants(const Law& law, const ParticleStore& p, PairContacts& pairs) {
+  if constexpr (HasPairConstants<Law>) {
+    pairs.constants_stride = Law::constants_size;
+    pairs.constants.resize(pairs.size() * Law::constants_size);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      ContactKinematics kin;
+      set_pair_bodies(p, pairs.first[k], pairs.second[k], kin);
+      law.pair_constants(kin, pairs.constants.data() + k * Law::constants_size);
+    }
+  } else {
+    pairs.constants_stride = 0;
+    pairs.constants.clear();
+  }
+}
+
+/// Evaluates every pair candidate into outputs[0, pairs.size()), and adds
+/// each contact's force and moment to the bodies Incidence::direct marks (the
+/// prefix of their sums, particle_loads.hpp; p.force/moment must have been
+/// started). Runs Incidence's ranges in parallel, each in increasing order.
 /// Returns true if some overlap exceeded max_overlap_fraction.
 /// Space: OpenSpace, or PeriodicSpace (periodic_cell.hpp): then the branch
 /// vector is the minimum image, the relative velocity includes the cell's
 /// affine flow, and out.shift[k] = (x_i + d) - x_j receives the image offset
-/// of the second particle (the integrator needs it for that body's lever arm).
+/// of the second particle (its lever arm starts at x_j + shift).
 template <ContactLawKernel Law, class Space = OpenSpace>
-bool evaluate_pair_contacts(const Law& law, const ParticleStore& p, PairContacts& pairs, ContactOutputs& out, double dt, int threads,
-                            const Space& space = {}) {
-  const auto n = static_cast<std::int64_t>(pairs.size());
+bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
+                            int threads, const Space& space = {}) {
+  const auto chunks = static_cast<std::int64_t>(incidence.pair_chunks());
   bool excessive = false;
-#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items) reduction(|| : excessive)
-  for (std::int64_t kk = 0; kk < n; ++kk) {
-    const auto k = std::size_t(kk);
-    const std::uint32_t i = pairs.first[k];
-    const std::uint32_t j = pairs.second[k];
-    double* history = pairs.row(k);
-    const Vec3 xi = p.position[i];
-    const Vec3 d = space.branch(xi, p.position[j]);
-    if constexpr (Space::periodic) out.shift[k] = (xi + d) - p.position[j];
-    const double ri = p.radius[i];
-    const double rj = p.radius[j];
-    const double reach = ri + rj;
-    const double dist2 = norm2(d);
-    if (!Law::acts_across_gap && dist2 >= reach * reach) {
-      out.force[k] = Vec3{};
-      out.point[k] = xi;
-      if constexpr (Law::has_couple) out.couple[k] = Vec3{};
-      law.separate(history);
-      continue;
+#pragma omp parallel for schedule(static, 1) num_threads(threads) if(chunks > 1) reduction(|| : excessive)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    for (std::size_t k = incidence.chunk_start[std::size_t(c)]; k < incidence.chunk_start[std::size_t(c) + 1]; ++k) {
+      const std::uint32_t i = pairs.first[k];
+      const std::uint32_t j = pairs.second[k];
+      double* history = pairs.row(k);
+      const Vec3 xi = p.position[i];
+      const Vec3 d = space.branch(xi, p.position[j]);
+      // Where j's lever arms start: its image next to i (j itself in open space).
+      Vec3 xj_arm = p.position[j];
+      if constexpr (Space::periodic) {
+        out.shift[k] = (xi + d) - p.position[j];
+        xj_arm = p.position[j] + out.shift[k];
+      }
+      const std::uint8_t direct = incidence.direct[k];
+      // The same terms the gather would add.
+      const auto add_to_bodies = [&](const Vec3& force, const Vec3& point, const Vec3& couple) {
+        if (direct & Incidence::direct_first) {
+          add_contact_load(p.force[i], p.moment[i], force, point - xi);
+          if constexpr (Law::has_couple) p.moment[i] += couple;
+        }
+        if (direct & Incidence::direct_second) {
+          const Vec3 on_second = -1.0 * force;
+          add_contact_load(p.force[j], p.moment[j], on_second, point - xj_arm);
+          if constexpr (Law::has_couple) p.moment[j] += -1.0 * couple;
+        }
+      };
+      const double ri = p.radius[i];
+      const double rj = p.radius[j];
+      const double reach = ri + rj;
+      const double dist2 = norm2(d);
+      // A pair that carries nothing this step: zero outputs, history reset.
+      const auto separated = [&] {
+        out.force[k] = Vec3{};
+        out.point[k] = xi;
+        if constexpr (Law::has_couple) out.couple[k] = Vec3{};
+        law.separate(history);
+        // The gather adds zeros here. Of those only the first body's +0 force
+        // can change a bit (a -0 component of m g, from a -0 gravity component,
+        // becomes +0); the second body's -0 leaves any value as it is, and so
+        // do zero moments (a moment sum starts at +0, so it is never -0).
+        if (direct & Incidence::direct_first) p.force[i] += Vec3{};
+      };
+      if (!Law::acts_across_gap && dist2 >= reach * reach) {
+        separated();
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      // The same test as the law's own (overlap <= 0), so the result is the law's.
+      if constexpr (SkipsIdleGaps<Law>) {
+        if (reach - dist <= 0.0 && Law::idle_across_gap(history)) {
+          separated();
+          continue;
+        }
+      }
+      // Coincident centres have no direction; any fixed one keeps the run deterministic.
+      const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
+      ContactKinematics kin;
+      kin.normal = normal;
+      kin.overlap = reach - dist;
+      excessive = excessive || kin.overlap > max_overlap_fraction * std::min(ri, rj);
+      // Contact point in the middle of the overlap (PFC ball–ball convention).
+      const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
+      const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
+      // Centre of j's image next to i (j itself in open space, so those bits are unchanged).
+      const Vec3 xj = Space::periodic ? xi + d : p.position[j];
+      const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - xj);
+      kin.relative_velocity = vj - vi;
+      if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
+      kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
+      set_pair_bodies(p, i, j, kin);
+      kin.dt = dt;
+      ContactForce f;
+      if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
+      else f = law.evaluate(kin, history);
+      out.force[k] = f.on_first;
+      out.point[k] = point;
+      if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
+      add_to_bodies(f.on_first, point, f.couple_on_first);
     }
-    const double dist = std::sqrt(dist2);
-    // Coincident centres have no direction; any fixed one keeps the run deterministic.
-    const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
-    ContactKinematics kin;
-    kin.normal = normal;
-    kin.overlap = reach - dist;
-    excessive = excessive || kin.overlap > max_overlap_fraction * std::min(ri, rj);
-    // Contact point in the middle of the overlap (PFC ball–ball convention).
-    const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
-    const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
-    // Centre of j's image next to i (j itself in open space, so those bits are unchanged).
-    const Vec3 xj = Space::periodic ? xi + d : p.position[j];
-    const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - xj);
-    kin.relative_velocity = vj - vi;
-    if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
-    kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
-    kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-    kin.radius_first = ri;
-    kin.radius_second = rj;
-    kin.dt = dt;
-    const ContactForce f = law.evaluate(kin, history);
-    out.force[k] = f.on_first;
-    out.point[k] = point;
-    if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
   }
   return excessive;
 }

@@ -3,8 +3,9 @@
 // storage and the particle -> contact incidence used for the gather.
 //
 // Why this shape: forces are computed per contact in parallel into
-// ContactOutputs (no two threads write the same slot), then every particle
-// sums its own contacts in the fixed order of Incidence. No atomics, no
+// ContactOutputs (no two threads write the same slot), and every particle
+// sums its own contacts in the fixed order of Incidence (most of them inside
+// the pair loop, the rest in a gather; see Incidence). No atomics, no
 // thread-dependent summation order: results are bit-identical for any thread
 // count (DESIGN §5 "Deterministic").
 #include <array>
@@ -24,9 +25,14 @@ struct PairContacts {
   std::vector<std::uint32_t> second;
   std::size_t stride = 0;       ///< history doubles per contact (the law's history_size)
   std::vector<double> history;  ///< size() * stride, row per contact
+  /// The law's pair constants (contact_model.hpp HasPairConstants), row per
+  /// contact of constants_stride doubles; set at every list rebuild.
+  std::size_t constants_stride = 0;
+  std::vector<double> constants;
 
   [[nodiscard]] std::size_t size() const noexcept { return first.size(); }
   [[nodiscard]] double* row(std::size_t k) noexcept { return history.data() + k * stride; }
+  [[nodiscard]] const double* constants_row(std::size_t k) const noexcept { return constants.data() + k * constants_stride; }
 };
 
 /// Particle–facet candidates of one wall, sorted by particle then facet.
@@ -67,14 +73,34 @@ struct ContactOutputs {
 
 /// For every particle the contacts it takes part in, in increasing contact
 /// order. entry = contact << 1 | role, role 1 = the particle is the second body.
+///
+/// Split summation (why: a separate gather pass over all contacts cost a third
+/// of a step). The pair loop runs over `pair_chunks` contiguous ranges of
+/// contact indices (one per thread) and adds a contact's force straight into
+/// a particle's resultant when its range is the first range that touches the
+/// particle: those contacts are a prefix of the particle's list, added in
+/// increasing order. The rest of the list (from gather_from[i]: pairs in later
+/// ranges, then the wall contacts) is gathered afterwards, continuing the same
+/// sum. A particle receives direct additions from one range only, so the
+/// ranges run in parallel without races, and every particle sums the same
+/// terms in the same order for any number of ranges: bit-identical results.
 struct Incidence {
   std::vector<std::uint32_t> start;  ///< particles + 1
   std::vector<std::uint32_t> entry;
+  std::vector<std::size_t> chunk_start;    ///< pair_chunks + 1 contact indices bounding the pair loop's ranges
+  std::vector<std::uint32_t> gather_from;  ///< per particle: its first entry not added by the pair loop
+  /// Per pair contact: direct_first | direct_second, the bodies the pair loop adds it to.
+  std::vector<std::uint8_t> direct;
+  static constexpr std::uint8_t direct_first = 1;
+  static constexpr std::uint8_t direct_second = 2;
+
+  [[nodiscard]] std::size_t pair_chunks() const noexcept { return chunk_start.empty() ? 0 : chunk_start.size() - 1; }
 };
 
-/// `wall_offsets[w]` is where wall w's contacts start in ContactOutputs.
+/// `wall_offsets[w]` is where wall w's contacts start in ContactOutputs;
+/// `pair_chunks` (>= 1) the number of ranges the pair loop is split into.
 [[nodiscard]] Incidence build_incidence(std::size_t particle_count, const PairContacts& pairs, std::span<const WallContacts* const> walls,
-                                        std::span<const std::size_t> wall_offsets);
+                                        std::span<const std::size_t> wall_offsets, std::size_t pair_chunks);
 
 /// History rows keyed by two stable integers ((id, id) for pairs, (id, facet)
 /// for wall contacts), kept across a neighbour-list rebuild.

@@ -76,4 +76,28 @@ concept ContactLawKernel = requires(const Law law, const ContactKinematics& k, d
   { law.stiffness_bound(1.0) } -> std::same_as<StiffnessBound>;  // for radii up to the argument (m)
 };
 
+/// Optional part of a law: per-contact constants that depend only on the two
+/// bodies (radii, effective mass) and the law's parameters, e.g. stiffnesses of
+/// the deformability method or a dashpot coefficient. The pair loop computes
+/// them once per list rebuild instead of every step (divisions and square
+/// roots are its slowest operations). `evaluate(k, constants, history)` must
+/// give bit for bit what `evaluate(k, history)` gives, which computes them on
+/// the spot (wall contacts and tests use that one).
+template <class Law>
+concept HasPairConstants = ContactLawKernel<Law> && requires(const Law law, const ContactKinematics& k, const double* constants, double* out,
+                                                             double* history) {
+  { Law::constants_size } -> std::convertible_to<std::size_t>;
+  { law.pair_constants(k, out) } -> std::same_as<void>;  // from k's radii and effective mass only
+  { law.evaluate(k, constants, history) } -> std::same_as<ContactForce>;
+};
+
+/// Optional part of a law that acts across a gap (a bond): true when this
+/// contact's history says it carries nothing while the surfaces are apart
+/// (e.g. no intact bond), where evaluate would return zero and only call
+/// separate; the pair loop then skips the contact's kinematics.
+template <class Law>
+concept SkipsIdleGaps = ContactLawKernel<Law> && Law::acts_across_gap && requires(const double* history) {
+  { Law::idle_across_gap(history) } -> std::same_as<bool>;
+};
+
 }  // namespace dfc::dem

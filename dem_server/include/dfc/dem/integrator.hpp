@@ -2,7 +2,7 @@
 // Law of motion: PFC's centred finite-difference scheme (leapfrog; Itasca PFC
 // "Law of Motion"; Cundall & Strack 1979) with local non-viscous damping.
 //
-//   F(t)      = sum of contact forces at x(t) + m g          (gathered per particle)
+//   F(t)      = sum of contact forces at x(t) + m g          (in a fixed order per particle)
 //   F_d       = F - alpha |F| sgn(v(t - dt/2))                (per component; same for moments)
 //   v(t+dt/2) = v(t-dt/2) + F_d / m dt,  omega likewise with I = 2/5 m r^2
 //   x(t+dt)   = x(t) + v(t+dt/2) dt
@@ -39,9 +39,10 @@ struct MotionReport {
   bool finite = true;              ///< false if any position or velocity became non-finite
 };
 
-/// Gathers every particle's contact forces in Incidence order, stores the
-/// resultant (undamped) in particles.force/moment, and advances velocities and
-/// positions by one step.
+/// Completes every particle's resultant (particle_loads.hpp: the pair loop
+/// added the first part of each sum to particles.force/moment, the rest is
+/// gathered here in Incidence order), stores it (undamped) in
+/// particles.force/moment, and advances velocities and positions by one step.
 [[nodiscard]] MotionReport integrate_motion(ParticleStore& particles, const Incidence& incidence, const ContactOutputs& contacts,
                                             std::span<const Vec3> reference_positions, const MotionSettings& settings, int threads);
 

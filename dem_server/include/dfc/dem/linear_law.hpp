@@ -59,13 +59,25 @@ struct LinearLaw {
 
   void separate(double* history) const noexcept { history[0] = history[1] = history[2] = 0.0; }
 
+  /// Pair constant (contact_model.hpp HasPairConstants): [0] = -c_n, the
+  /// dashpot coefficient c_n = 2 beta_n sqrt(m_eff k_n) (reference/dem-physics.md §2.3) negated.
+  static constexpr std::size_t constants_size = 1;
+  void pair_constants(const ContactKinematics& k, double* c) const noexcept {
+    c[0] = damping_ratio_normal > 0.0 ? -2.0 * damping_ratio_normal * std::sqrt(k.effective_mass * kn) : 0.0;
+  }
+
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
+    double c[constants_size];
+    pair_constants(k, c);
+    return evaluate(k, c, history);
+  }
+
+  [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, const double* constants, double* history) const noexcept {
     const Vec3& n = k.normal;
     const double fn_spring = kn * k.overlap;  // compression positive; overlap > 0 here, so never tensile
     const double vn = dot(k.relative_velocity, n);  // > 0 opening
-    // Dashpot c_n = 2 beta_n sqrt(m_eff k_n) (reference/dem-physics.md §2.3);
-    // like PFC's default full mode it may make the total normal force tensile while opening.
-    const double fn_dashpot = damping_ratio_normal > 0.0 ? -2.0 * damping_ratio_normal * std::sqrt(k.effective_mass * kn) * vn : 0.0;
+    // Like PFC's default full mode the dashpot may make the total normal force tensile while opening.
+    const double fn_dashpot = damping_ratio_normal > 0.0 ? constants[0] * vn : 0.0;
 
     Vec3 shear = rotate_into_contact_plane({history[0], history[1], history[2]}, n);
     // The second body's contact point moving by v_t dt drags the first body along v_t.
@@ -79,6 +91,6 @@ struct LinearLaw {
   }
 };
 
-static_assert(ContactLawKernel<LinearLaw>);
+static_assert(HasPairConstants<LinearLaw>);
 
 }  // namespace dfc::dem

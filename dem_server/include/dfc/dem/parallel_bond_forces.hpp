@@ -76,9 +76,9 @@ struct PeakStresses {
 /// Most intact bonds are far from failure, so the exact test (peak_stresses,
 /// shear_strength) runs only for the others (measured: +3 % bonded throughput
 /// on the peer benchmark, where no bond is near failure).
-[[nodiscard]] inline bool surely_below_limits(const BondLoad& f, const BondSection& s, double moment_factor, double tensile_strength, double cohesion,
+/// per_radius = β̄ / R̄ (a pair constant of the law: no division per step).
+[[nodiscard]] inline bool surely_below_limits(const BondLoad& f, const BondSection& s, double per_radius, double tensile_strength, double cohesion,
                                               double tan_friction_angle) noexcept {
-  const double per_radius = moment_factor / s.radius;
   const double bend = std::abs(f.bend.x) + std::abs(f.bend.y) + std::abs(f.bend.z);
   if (f.normal + 4.0 * per_radius * bend >= tensile_strength * s.area) return false;
   const double shear = std::abs(f.shear.x) + std::abs(f.shear.y) + std::abs(f.shear.z) + 2.0 * per_radius * std::abs(f.twist);

@@ -5,8 +5,10 @@
 //   1. rebuild the candidate lists if the Verlet skin is used up;
 //   2. contact forces: every particle pair and particle–facet candidate,
 //      in parallel into per-contact storage, the law chosen once per step;
-//   3. law of motion: per particle, gather the contact forces in fixed order,
-//      add gravity, apply local damping, advance velocities and positions;
+//      the pair loop also adds most contacts to the particles' resultants,
+//      which start from gravity (contact_lists.hpp Incidence);
+//   3. law of motion: per particle, add the remaining contact forces in the
+//      same fixed order, apply local damping, advance velocities and positions;
 //   4. walls: distribute the contact forces to facet vertices, then move the
 //      vertices with their velocities.
 // The same input and thread count give the same result bit for bit, and so
@@ -111,6 +113,8 @@ class Simulation {
   void append_persistent_pairs(const HistoryArchive& archive);
   /// Bonds every pair with a surface gap <= the law's bond gap (first rebuild).
   void install_bonds();
+  /// The particle law's pair constants for the new lists (contact_forces.cpp).
+  void compute_pair_constants();
   /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
   bool compute_contact_forces(double dt);
   void move_walls(double dt);
