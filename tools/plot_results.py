@@ -253,7 +253,8 @@ def plot_overlays(runs, out_dir):
         ax.set_ylabel("deviator stress q [kPa]" if deviator else "axial stress [kPa]")
         ax.grid(True, alpha=0.3)
         ax.legend()
-        ax.set_title("Stress-strain, " + ", ".join(label for label, _ in curves))
+        title = "Stress-strain, " + ", ".join(label for label, _ in curves)
+        ax.set_title(title if len(title) <= 60 else f"Stress-strain, {len(curves)} runs")
         written.append(save(fig, out_dir, "stress_strain_overlay.png"))
     displacement_names, force_names = pile_columns()
     piles = [(label, column(series, *displacement_names), column(series, *force_names)) for label, series in runs]
