@@ -447,7 +447,7 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
 std::string dem_config_help() {
   return R"((SI units; unknown keys are errors)
   particles       (required) the spheres
-    generator       "lattice" | "list" | "radius_expansion" (needs "periodic")
+    generator       "lattice" | "list" | "radius_expansion" (needs "periodic" or "triaxial")
     density_kg_m3   particle density (required)
     lattice: radius_min_m, radius_max_m (required), spacing_factor (1.05: lattice pitch / 2 radius_max_m),
              arrangement ("cubic" | "fcc": close-packed layers, a denser start that settles faster),
@@ -459,6 +459,7 @@ std::string dem_config_help() {
              run multiplies them by S), porosity (required: target in (0,1), met exactly after the last stage),
              multiplier (1.6: final/initial radius), stages (10), relax_steps (1000 cycles after each stage),
              seed (1); spheres are placed at random without overlap at radius/multiplier in the periodic cell
+             (or the box of the triaxial walls)
   upscaling       {"scale_factor": S} particle upscaling (default S = 1): every generated radius is
                   multiplied by S and every contact-law parameter follows its law's declared rule (value x
                   S^exponent, see "upscaling by S" below); the domain, walls and strain rates stay as given
