@@ -105,6 +105,13 @@ DemModel build_model(const DemConfig& c) {
   // 4. Preparation of a periodic REV or of a sample in six walls. The critical
   // step above used the start radii of a radius expansion; the grown packing's
   // step is taken again, for the servo stages.
+  // The servo's cap: 1e-4 strain per step unless given (a periodic cell's
+  // loading needs it even without a preparation stage).
+  const auto cap = [&] {
+    const std::optional<double> given = c.periodic ? c.periodic->max_strain_rate : c.triaxial ? c.triaxial->max_strain_rate : std::nullopt;
+    return given.value_or(1e-4 / model.dt);
+  };
+  model.max_strain_rate = c.periodic || c.triaxial ? cap() : 0.0;
   if (!prepared) return model;
   const double fraction = c.timestep.dt ? *c.timestep.dt / model.dt_critical : c.timestep.fraction_of_critical;
   if (c.particles.generator == "radius_expansion") {
@@ -112,10 +119,8 @@ DemModel build_model(const DemConfig& c) {
     for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, c.particles.final_radius[std::size_t(grown.id[i])]);
     model.dt_critical = critical_step(grown, c, sim.walls());
     model.dt = c.timestep.dt ? std::min(*c.timestep.dt, model.dt_critical) : fraction * model.dt_critical;
+    model.max_strain_rate = cap();  // of the grown packing's step
   }
-  // The servo's cap: 1e-4 strain per step unless given.
-  const std::optional<double> max_rate = c.periodic ? c.periodic->max_strain_rate : c.triaxial->max_strain_rate;
-  model.max_strain_rate = max_rate.value_or(1e-4 / model.dt);
   if (c.periodic)
     model.preparation = prepare_sample(sim, *c.periodic, c.particles.final_radius, c.particles.expansion, fraction, model.dt, model.max_strain_rate);
   else

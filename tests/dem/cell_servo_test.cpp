@@ -48,6 +48,18 @@ TEST(RadiusExpansion, HitsTheTargetPorosityToRoundOffBeforeRelaxation) {
   EXPECT_EQ(e.steps, 5 * 200);
 }
 
+// A cell loaded during the run but not prepared (listed spheres, no
+// consolidation) still gets the servo's default cap, 1e-4 strain per step: a
+// zero cap would hold every stress-controlled edge still.
+TEST(CellServo, LoadingWithoutPreparationGetsTheDefaultCap) {
+  nlohmann::json c = rev_config();
+  c["particles"] = {{"generator", "list"}, {"density_kg_m3", 2650}, {"spheres", {{0.001, 0.001, 0.001, 5e-4}, {0.003, 0.003, 0.003, 5e-4}}}};
+  c["periodic"]["loading"] = {{"mode", "isotropic"}, {"stress_pa", 1e3}};
+  const DemModel model = build_model(parse_dem_config(c));
+  EXPECT_FALSE(model.preparation.has_value());
+  EXPECT_DOUBLE_EQ(model.max_strain_rate, 1e-4 / model.dt);
+}
+
 TEST(CellServo, IsotropicConsolidationReachesTheTargetWithinOnePercent) {
   nlohmann::json c = rev_config();
   c["periodic"]["consolidation"] = {{"mode", "isotropic"}, {"stress_pa", 1e4}, {"tolerance", 0.01}, {"max_steps", 60000}};
