@@ -29,6 +29,7 @@
 // orders of magnitude, not digits.
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <fstream>
 #include <numbers>
 #include <cstdlib>
@@ -54,6 +55,7 @@ struct Options {
   std::string data;  ///< LAMMPS data file: the peer benchmark instead of the settled bed
   int warmup = 1000;
   std::string law = "linear";  ///< --data only: "linear" or "linear_pbond"
+  bool digest = false;         ///< --data only: print a hash of the final state's bits
 };
 
 Options parse(int argc, char** argv) {
@@ -63,9 +65,11 @@ Options parse(int argc, char** argv) {
     if (a == "--help" || a == "-h") {
       std::cout << "dem_throughput: time the DEM hot loop (particle-steps/s)\n\n"
                    "  dem_throughput [--side N] [--layers N] [--threads \"1 2\"] [--steps N] [--max-settle N]\n"
-                   "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond]\n\n"
+                   "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond] [--digest]\n\n"
                    "Without --data: settles a bed of N x N x layers spheres, then times --steps steps per thread count.\n"
-                   "With --data: the peer benchmark on a LAMMPS data file (../shared/bench/peers; see bench/dem_peers.sh).\n";
+                   "With --data: the peer benchmark on a LAMMPS data file (../shared/bench/peers; see bench/dem_peers.sh).\n"
+                   "--digest: also print a hash of the final state's bits (positions, velocities, spins, resultants,\n"
+                   "pair history, contact forces), to check that a change to the code leaves results bit-identical.\n";
       std::exit(0);
     }
     if (a == "--version") {
@@ -73,7 +77,13 @@ Options parse(int argc, char** argv) {
       std::exit(0);
     }
   }
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; i += 2) {
+    if (std::string(argv[i]) == "--digest") {
+      o.digest = true;
+      --i;
+      continue;
+    }
+    if (i + 1 >= argc) throw std::runtime_error(std::string("option ") + argv[i] + " needs a value");
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--side") o.side = std::stoi(v);
     else if (a == "--layers") o.layers = std::stoi(v);
@@ -181,6 +191,24 @@ nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::st
           {"threads", threads}};
 }
 
+/// FNV-1a over the bits of the state a change must leave bit-identical.
+std::uint64_t state_digest(const Simulation& sim) {
+  std::uint64_t hash = 14695981039346656037ull;
+  const auto add = [&hash](const auto& values) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+    for (std::size_t b = 0; b < values.size() * sizeof(values[0]); ++b) hash = (hash ^ bytes[b]) * 1099511628211ull;
+  };
+  const ParticleStore& p = sim.particles();
+  add(p.position);
+  add(p.velocity);
+  add(p.angular_velocity);
+  add(p.force);
+  add(p.moment);
+  add(sim.pair_contacts().history);
+  add(sim.contact_outputs().force);
+  return hash;
+}
+
 /// The peer benchmark protocol on a data file: warm-up untimed, then timed.
 void run_peer_benchmark(const Options& o) {
   const PeerPacking pack = read_lammps_data(o.data);
@@ -198,6 +226,7 @@ void run_peer_benchmark(const Options& o) {
               << seconds << " s for " << o.steps << " steps of " << sim.particles().size() << " particles, " << sim.rebuild_count() - rebuilds
               << " rebuilds, coordination " << m.coordination_number << ", kinetic energy " << m.kinetic_energy << " J";
     if (sim.settings().particle_law.bonded()) std::cout << ", bonds intact " << sim.bond_counts().intact;
+    if (o.digest) std::cout << ", state digest " << std::hex << state_digest(sim) << std::dec;
     std::cout << ")\n";
   }
 }
