@@ -14,6 +14,7 @@ MotionReport integrate(ParticleStore& p, const Incidence& incidence, const Conta
                        const MotionSettings& s, int threads) {
   const auto n = static_cast<std::int64_t>(p.size());
   const double dt = s.dt;
+  const bool damped = s.local_damping != 0.0;
   double max_d2 = 0.0;
   bool finite = true;
 #pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items) reduction(max : max_d2) reduction(&& : finite)
@@ -29,8 +30,17 @@ MotionReport integrate(ParticleStore& p, const Incidence& incidence, const Conta
 
     Vec3 v = p.velocity[i];
     Vec3 w = p.angular_velocity[i];
-    v += (dt / p.mass[i]) * local_damping(force, v, s.local_damping);
-    w += (dt / p.inertia[i]) * local_damping(moment, w, s.local_damping);
+    // Without damping, F_d = F - 0 |F| sgn(v) is F bit for bit (the product is
+    // +-0, and x - (+-0) only turns a -0 into +0, which then adds nothing to a
+    // nonzero v; with v = +-0, sgn(v) = 0 and the product is +0), so the sign
+    // tests are skipped: in a jittering packing they are random branches.
+    if (damped) {
+      v += (dt / p.mass[i]) * local_damping(force, v, s.local_damping);
+      w += (dt / p.inertia[i]) * local_damping(moment, w, s.local_damping);
+    } else {
+      v += (dt / p.mass[i]) * force;
+      w += (dt / p.inertia[i]) * moment;
+    }
     const Vec3 x = xi + dt * v;
     p.velocity[i] = v;
     p.angular_velocity[i] = w;
