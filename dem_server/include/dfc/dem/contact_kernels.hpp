@@ -50,6 +50,22 @@ void compute_pair_constants(const Law& law, const ParticleStore& p, PairContacts
   }
 }
 
+/// Candidates classified per block of a range before any is evaluated
+/// (evaluate_pair_contacts): whether a candidate carries a load is a random
+/// branch in a packing (about 40 % of the peer benchmark's candidates are
+/// apart), so the heavy loop runs over the acting ones only, and a
+/// mispredicted branch per candidate becomes a store per candidate.
+inline constexpr std::size_t pair_block_size = 256;
+
+struct PairBlock {
+  std::uint32_t acting[pair_block_size];   ///< offsets in the block of the candidates to evaluate, increasing
+  std::uint32_t apart[pair_block_size];    ///< offsets of those that carry nothing this step, increasing
+  Vec3 branch[pair_block_size];            ///< x_j - x_i (minimum image), by offset
+  double distance2[pair_block_size];       ///< |branch|^2, by offset
+  std::size_t acting_count = 0;
+  std::size_t apart_count = 0;
+};
+
 /// Evaluates every pair candidate into outputs[0, pairs.size()), and adds
 /// each contact's force and moment to the bodies Incidence::direct marks (the
 /// prefix of their sums, particle_loads.hpp; p.force/moment must have been
@@ -59,6 +75,13 @@ void compute_pair_constants(const Law& law, const ParticleStore& p, PairContacts
 /// vector is the minimum image, the relative velocity includes the cell's
 /// affine flow, and out.shift[k] = (x_i + d) - x_j receives the image offset
 /// of the second particle (its lever arm starts at x_j + shift).
+///
+/// Each range goes in blocks of pair_block_size: the candidates that carry
+/// nothing (apart, or across a gap with no intact bond) are written as
+/// separated first, then the acting ones are evaluated in increasing order.
+/// The order of the additions into a particle is therefore that of the
+/// acting contacts, as before; a separated pair adds only a +0 (see
+/// `separated`), and where a +0 enters a sum does not change its bits.
 template <ContactLawKernel Law, class Space = OpenSpace>
 bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
                             int threads, const Space& space = {}) {
@@ -66,83 +89,99 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
   bool excessive = false;
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if(chunks > 1) reduction(|| : excessive)
   for (std::int64_t c = 0; c < chunks; ++c) {
-    for (std::size_t k = incidence.chunk_start[std::size_t(c)]; k < incidence.chunk_start[std::size_t(c) + 1]; ++k) {
-      const std::uint32_t i = pairs.first[k];
-      const std::uint32_t j = pairs.second[k];
-      double* history = pairs.row(k);
-      const Vec3 xi = p.position[i];
-      const Vec3 d = space.branch(xi, p.position[j]);
-      // Where j's lever arms start: its image next to i (j itself in open space).
-      Vec3 xj_arm = p.position[j];
-      if constexpr (Space::periodic) {
-        out.shift[k] = (xi + d) - p.position[j];
-        xj_arm = p.position[j] + out.shift[k];
+    const std::size_t range_end = incidence.chunk_start[std::size_t(c) + 1];
+    PairBlock block;
+    for (std::size_t first = incidence.chunk_start[std::size_t(c)]; first < range_end; first += pair_block_size) {
+      const std::size_t count = std::min(pair_block_size, range_end - first);
+      // 1. Classify (no branch on the outcome: both lists get a slot, one count moves).
+      block.acting_count = block.apart_count = 0;
+      for (std::size_t o = 0; o < count; ++o) {
+        const std::size_t k = first + o;
+        const std::uint32_t i = pairs.first[k];
+        const std::uint32_t j = pairs.second[k];
+        const Vec3 xi = p.position[i];
+        const Vec3 d = space.branch(xi, p.position[j]);
+        if constexpr (Space::periodic) out.shift[k] = (xi + d) - p.position[j];
+        const double reach = p.radius[i] + p.radius[j];
+        const double dist2 = norm2(d);
+        bool acting = true;
+        if constexpr (!Law::acts_across_gap) {
+          acting = !(dist2 >= reach * reach);
+        } else if constexpr (SkipsIdleGaps<Law>) {
+          // The same test as the law's own (overlap <= 0), so the result is the law's.
+          acting = !((reach - std::sqrt(dist2) <= 0.0) & Law::idle_across_gap(pairs.row(k)));
+        }
+        block.branch[o] = d;
+        block.distance2[o] = dist2;
+        block.acting[block.acting_count] = std::uint32_t(o);
+        block.apart[block.apart_count] = std::uint32_t(o);
+        block.acting_count += acting ? 1 : 0;
+        block.apart_count += acting ? 0 : 1;
       }
-      const std::uint8_t direct = incidence.direct[k];
-      // The same terms the gather would add.
-      const auto add_to_bodies = [&](const Vec3& force, const Vec3& point, const Vec3& couple) {
-        if (direct & Incidence::direct_first) {
-          add_contact_load(p.force[i], p.moment[i], force, point - xi);
-          if constexpr (Law::has_couple) p.moment[i] += couple;
-        }
-        if (direct & Incidence::direct_second) {
-          const Vec3 on_second = -1.0 * force;
-          add_contact_load(p.force[j], p.moment[j], on_second, point - xj_arm);
-          if constexpr (Law::has_couple) p.moment[j] += -1.0 * couple;
-        }
-      };
-      const double ri = p.radius[i];
-      const double rj = p.radius[j];
-      const double reach = ri + rj;
-      const double dist2 = norm2(d);
-      // A pair that carries nothing this step: zero outputs, history reset.
-      const auto separated = [&] {
+      // 2. A pair that carries nothing this step: zero outputs, history reset.
+      for (std::size_t a = 0; a < block.apart_count; ++a) {
+        const std::size_t k = first + block.apart[a];
+        const std::uint32_t i = pairs.first[k];
         out.force[k] = Vec3{};
-        out.point[k] = xi;
+        out.point[k] = p.position[i];
         if constexpr (Law::has_couple) out.couple[k] = Vec3{};
-        law.separate(history);
+        law.separate(pairs.row(k));
         // The gather adds zeros here. Of those only the first body's +0 force
         // can change a bit (a -0 component of m g, from a -0 gravity component,
         // becomes +0); the second body's -0 leaves any value as it is, and so
         // do zero moments (a moment sum starts at +0, so it is never -0).
-        if (direct & Incidence::direct_first) p.force[i] += Vec3{};
-      };
-      if (!Law::acts_across_gap && dist2 >= reach * reach) {
-        separated();
-        continue;
+        if (incidence.direct[k] & Incidence::direct_first) p.force[i] += Vec3{};
       }
-      const double dist = std::sqrt(dist2);
-      // The same test as the law's own (overlap <= 0), so the result is the law's.
-      if constexpr (SkipsIdleGaps<Law>) {
-        if (reach - dist <= 0.0 && Law::idle_across_gap(history)) {
-          separated();
-          continue;
+      // 3. The acting pairs, in increasing order.
+      for (std::size_t a = 0; a < block.acting_count; ++a) {
+        const std::size_t o = block.acting[a];
+        const std::size_t k = first + o;
+        const std::uint32_t i = pairs.first[k];
+        const std::uint32_t j = pairs.second[k];
+        double* history = pairs.row(k);
+        const Vec3 xi = p.position[i];
+        const Vec3 d = block.branch[o];
+        // Where j's lever arms start: its image next to i (j itself in open space).
+        Vec3 xj_arm = p.position[j];
+        if constexpr (Space::periodic) xj_arm = p.position[j] + out.shift[k];
+        const std::uint8_t direct = incidence.direct[k];
+        const double ri = p.radius[i];
+        const double rj = p.radius[j];
+        const double dist = std::sqrt(block.distance2[o]);
+        // Coincident centres have no direction; any fixed one keeps the run deterministic.
+        const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
+        ContactKinematics kin;
+        kin.normal = normal;
+        kin.overlap = (ri + rj) - dist;
+        excessive = excessive || kin.overlap > max_overlap_fraction * std::min(ri, rj);
+        // Contact point in the middle of the overlap (PFC ball–ball convention).
+        const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
+        const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
+        // Centre of j's image next to i (j itself in open space, so those bits are unchanged).
+        const Vec3 xj = Space::periodic ? xi + d : p.position[j];
+        const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - xj);
+        kin.relative_velocity = vj - vi;
+        if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
+        kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
+        set_pair_bodies(p, i, j, kin);
+        kin.dt = dt;
+        ContactForce f;
+        if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
+        else f = law.evaluate(kin, history);
+        out.force[k] = f.on_first;
+        out.point[k] = point;
+        if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
+        // The same terms the gather would add.
+        if (direct & Incidence::direct_first) {
+          add_contact_load(p.force[i], p.moment[i], f.on_first, point - xi);
+          if constexpr (Law::has_couple) p.moment[i] += f.couple_on_first;
+        }
+        if (direct & Incidence::direct_second) {
+          const Vec3 on_second = -1.0 * f.on_first;
+          add_contact_load(p.force[j], p.moment[j], on_second, point - xj_arm);
+          if constexpr (Law::has_couple) p.moment[j] += -1.0 * f.couple_on_first;
         }
       }
-      // Coincident centres have no direction; any fixed one keeps the run deterministic.
-      const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
-      ContactKinematics kin;
-      kin.normal = normal;
-      kin.overlap = reach - dist;
-      excessive = excessive || kin.overlap > max_overlap_fraction * std::min(ri, rj);
-      // Contact point in the middle of the overlap (PFC ball–ball convention).
-      const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
-      const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
-      // Centre of j's image next to i (j itself in open space, so those bits are unchanged).
-      const Vec3 xj = Space::periodic ? xi + d : p.position[j];
-      const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - xj);
-      kin.relative_velocity = vj - vi;
-      if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
-      kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
-      set_pair_bodies(p, i, j, kin);
-      kin.dt = dt;
-      ContactForce f;
-      if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
-      else f = law.evaluate(kin, history);
-      out.force[k] = f.on_first;
-      out.point[k] = point;
-      if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
-      add_to_bodies(f.on_first, point, f.couple_on_first);
     }
   }
   return excessive;
