@@ -4,7 +4,7 @@
 # threads / MPI processes; prints particle-steps/s and our ratios.
 #
 #   bench/dem_peers.sh [BUILD_DIR]        (default build; builds dem_throughput)
-# Environment: SIZE=12k|50k (12k), WARMUP (1000), STEPS (2000), PEERS_DIR.
+# Environment: SIZE=12k|50k (12k), WARMUP (1000), STEPS (2000), REPEAT (3 rounds), PEERS_DIR.
 # Installs the Debian packages lammps liggghts openmpi-bin if missing (needs root).
 # Differences of our run from the peers' (docs/dem_benchmarks.md): no periodic
 # x/y boundaries (frictionless side walls instead), no tangential dashpot.
@@ -13,7 +13,7 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${1:-$ROOT/build}
 PEERS=${PEERS_DIR:-$ROOT/../shared/bench/peers}
-SIZE=${SIZE:-12k}; WARMUP=${WARMUP:-1000}; STEPS=${STEPS:-2000}
+SIZE=${SIZE:-12k}; WARMUP=${WARMUP:-1000}; STEPS=${STEPS:-2000}; REPEAT=${REPEAT:-3}
 DATA=$PEERS/data/pack_$SIZE.data
 LOGS=$(mktemp -d)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
@@ -27,13 +27,18 @@ fi
 # 2. Our DEM.
 [ -f "$BUILD/CMakeCache.txt" ] || cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$BUILD" --target dem_throughput -j2 >/dev/null
-OURS=$("$BUILD/bin/dem_throughput" --data "$DATA" --threads "1 2" --warmup "$WARMUP" --steps "$STEPS")
-echo "$OURS" | sed 's/^/ours: /'
-ours() { echo "$OURS" | awk -v t="$1" '$1 == "threads" && $2 == t":" {print $3}'; }
 
-# 3. Peers: "Loop time of T on P procs for S steps with N atoms" of the timed run.
-peer() {  # $1 = lammps|liggghts, $2 = processes
-  local code=$1 p=$2 exe launch log=$LOGS/$1_p$2.log
+# 3. Every code once per round, rounds interleaved, and the best of the rounds
+#    kept for each (the VM's speed drifts by tens of per cent within minutes:
+#    docs/dem_benchmarks.md; interleaving exposes every code to the same drift,
+#    and the best round is the one least disturbed).
+ours_run() {  # $1 = linear|linear_pbond; prints "threads T: RATE ..." lines
+  "$BUILD/bin/dem_throughput" --data "$DATA" --threads "1 2" --warmup "$WARMUP" --steps "$STEPS" --law "$1"
+}
+rate_of() { awk -v t="$1" '$1 == "threads" && $2 == t":" {print $3}'; }
+# "Loop time of T on P procs for S steps with N atoms" of the timed run.
+peer() {  # $1 = lammps|liggghts, $2 = processes, $3 = round
+  local code=$1 p=$2 exe launch log=$LOGS/$1_p$2_r$3.log
   [ "$code" = lammps ] && exe=lmp || exe=liggghts
   launch=$exe; [ "$p" -gt 1 ] && launch="mpirun -np $p $exe"
   (cd "$PEERS/$code" && $launch -in bench.in -var data "$DATA" -var nwarm "$WARMUP" -var nrun "$STEPS" -log "$log" >/dev/null 2>&1) || { echo nan; return; }
@@ -41,25 +46,36 @@ peer() {  # $1 = lammps|liggghts, $2 = processes
   grep "Loop time" "$log" | tail -n 1 | sed -E 's/.*Loop time of ([0-9.eE+-]+) on [0-9]+ procs for ([0-9]+) steps with ([0-9]+) atoms.*/\1 \2 \3/' \
     | awk '{print $3 * $2 / $1}'
 }
-
-printf "\n%-10s %-6s %14s %12s\n" code procs particle-steps/s ours/code
-for p in 1 2; do
-  o=$(ours $p)
-  printf "%-10s %-6s %14.3g %12s\n" ours "$p" "$o" "1"
+declare -A best
+keep() {  # $1 = key, $2 = rate: keep the largest
+  local old=${best[$1]:-0}
+  best[$1]=$(awk -v a="$old" -v b="$2" 'BEGIN{print (b == b + 0 && b > a) ? b : a}')
+}
+printf "%-6s %-12s %-6s %14s\n" round code procs particle-steps/s
+for r in $(seq 1 "$REPEAT"); do
+  out=$(ours_run linear)
+  for p in 1 2; do v=$(echo "$out" | rate_of $p); keep "ours $p" "$v"; printf "%-6s %-12s %-6s %14.3g\n" "$r" ours "$p" "$v"; done
+  out=$(ours_run linear_pbond)
+  for p in 1 2; do v=$(echo "$out" | rate_of $p); keep "bonded $p" "$v"; printf "%-6s %-12s %-6s %14.3g\n" "$r" "ours bonded" "$p" "$v"; done
   for code in lammps liggghts; do
-    v=$(peer $code $p)
-    printf "%-10s %-6s %14.3g %12.3f\n" "$code" "$p" "$v" "$(awk -v a="$o" -v b="$v" 'BEGIN{print (b > 0 ? a / b : 0)}')"
+    for p in 1 2; do v=$(peer $code $p "$r"); keep "$code $p" "$v"; printf "%-6s %-12s %-6s %14.3g\n" "$r" "$code" "$p" "$v"; done
+  done
+done
+ratio() { awk -v a="${best[$1]}" -v b="${best[$2]}" 'BEGIN{print (b > 0 ? a / b : 0)}'; }
+
+printf "\nbest of %s rounds\n%-12s %-6s %14s %12s\n" "$REPEAT" code procs particle-steps/s ours/code
+for p in 1 2; do
+  printf "%-12s %-6s %14.3g %12s\n" ours "$p" "${best[ours $p]}" "1"
+  for code in lammps liggghts; do
+    printf "%-12s %-6s %14.3g %12.3f\n" "$code" "$p" "${best[$code $p]}" "$(ratio "ours $p" "$code $p")"
   done
 done
 
-# 4. Targets of issue 3 measured in the same run: 1 -> 2 thread speed-up, and
-#    bonded (every touching pair bonded by linear_pbond) against unbonded.
-BONDED=$("$BUILD/bin/dem_throughput" --data "$DATA" --threads "1 2" --warmup "$WARMUP" --steps "$STEPS" --law linear_pbond)
-echo "$BONDED" | sed 's/^/ours bonded: /'
-bonded() { echo "$BONDED" | awk -v t="$1" '$1 == "threads" && $2 == t":" {print $3}'; }
-printf "\n%-34s %8s %8s\n" "ours" "value" "target"
-printf "%-34s %8.3f %8s\n" "speed-up 1 -> 2 threads (linear)" "$(awk -v a="$(ours 2)" -v b="$(ours 1)" 'BEGIN{print a / b}')" ">= 1.7"
+# 4. Targets of issue 3: 1 -> 2 thread speed-up, and bonded (every touching
+#    pair bonded by linear_pbond) against unbonded.
+printf "\n%-34s %8s %8s\n" "ours (best of $REPEAT rounds)" "value" "target"
+printf "%-34s %8.3f %8s\n" "speed-up 1 -> 2 threads (linear)" "$(ratio "ours 2" "ours 1")" ">= 1.7"
 for p in 1 2; do
-  printf "%-34s %8.3f %8s\n" "bonded / unbonded, $p thread(s)" "$(awk -v a="$(bonded $p)" -v b="$(ours $p)" 'BEGIN{print a / b}')" ">= 0.7"
+  printf "%-34s %8.3f %8s\n" "bonded / unbonded, $p thread(s)" "$(ratio "bonded $p" "ours $p")" ">= 0.7"
 done
 echo "(logs: $LOGS)"
