@@ -15,11 +15,11 @@ void Simulation::compute_pair_constants() {
   std::visit([&](const auto& law) { dfc::dem::compute_pair_constants(law, particles_, pairs_); }, settings_.particle_law.law);
 }
 
-bool Simulation::compute_contact_forces(double dt) {
+bool Simulation::compute_contact_forces(double dt, ContactRecord record) {
   start_particle_loads(particles_, settings_.gravity, threads_);
   bool excessive = std::visit([&](const auto& law) {
-    if (cell_) return evaluate_pair_contacts(law, particles_, pairs_, incidence_, outputs_, dt, threads_, PeriodicSpace(*cell_));
-    return evaluate_pair_contacts(law, particles_, pairs_, incidence_, outputs_, dt, threads_);
+    if (cell_) return evaluate_pair_contacts(law, particles_, pairs_, incidence_, outputs_, dt, record, threads_, PeriodicSpace(*cell_));
+    return evaluate_pair_contacts(law, particles_, pairs_, incidence_, outputs_, dt, record, threads_);
   }, settings_.particle_law.law);
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const std::size_t offset = wall_offsets_[w];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include <omp.h>
 
@@ -218,14 +219,20 @@ void Simulation::move_walls(double dt) {
   }
 }
 
-void Simulation::step(double dt) {
+const ContactOutputs& Simulation::contact_outputs() const {
+  if (!outputs_complete_) throw std::logic_error("contact outputs read after a step that recorded only the gathered ones (ContactRecord::gathered_only)");
+  return outputs_;
+}
+
+void Simulation::step(double dt, ContactRecord record) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw UserError("the time step must be a positive number of seconds");
   if (stale_) rebuild();
   for (auto& wall : walls_)
     if (wall.motion == WallMotion::prescribed)
       std::fill(wall.vertex_velocity.begin(), wall.vertex_velocity.end(), step_ >= wall.start_step ? wall.prescribed_velocity : Vec3{});
 
-  if (compute_contact_forces(dt)) {
+  outputs_complete_ = record == ContactRecord::complete;
+  if (compute_contact_forces(dt, record)) {
     std::ostringstream msg;
     msg << "a contact overlap exceeded half a particle radius at step " << step_ << ": the run is unstable; use a time step below the critical "
         << critical_timestep() << " s (or a smaller fraction of it), softer contacts or slower walls";
@@ -262,7 +269,7 @@ void Simulation::run(std::int64_t steps, double dt) {
         << limit << " s (a fraction such as 0.2 of it is safer in dense packings)";
     throw SolverError(msg.str());
   }
-  for (std::int64_t s = 0; s < steps; ++s) step(dt);
+  for (std::int64_t s = 0; s < steps; ++s) step(dt, s + 1 < steps ? ContactRecord::gathered_only : ContactRecord::complete);
 }
 
 }  // namespace dfc::dem

@@ -1,11 +1,14 @@
 // Same input and thread count -> the same bits; and, because no sum depends on
 // how the work is split, 1 and 2 threads agree too (DESIGN §5).
 #include <cstring>
+#include <stdexcept>
+#include <utility>
 
 #include <gtest/gtest.h>
 
 #include "dem_test_support.hpp"
 #include "dfc/dem/cell_servo.hpp"
+#include "dfc/dem/parallel.hpp"
 
 namespace dfc::dem {
 namespace {
@@ -105,6 +108,66 @@ TEST(Determinism, PeriodicCellOneAndTwoThreadsAreBitIdentical) {
   // 1 vs 2 threads identical implies each is repeatable; the open-space test
   // above checks repeats at one thread count (a third run here would double the time).
   expect_identical(one, run_periodic(2));
+}
+
+/// Steps that record only the gathered contact outputs (ContactRecord, as in
+/// the middle of Simulation::run) must move the particles by the same bits as
+/// steps that record all of them, at 2 threads (so that some pairs are
+/// gathered); after a complete last step the outputs agree too, and reading
+/// them after a gathered-only step is refused. `config`: a model; `steps` > 1.
+void expect_recording_changes_no_bit(const nlohmann::json& config, int steps) {
+  const auto run_with = [&](ContactRecord middle) {
+    DemModel model = build_model(parse_dem_config(config));
+    Simulation& sim = *model.simulation;
+    for (int s = 0; s + 1 < steps; ++s) sim.step(model.dt, middle);
+    if (middle == ContactRecord::gathered_only) {
+      EXPECT_THROW((void)sim.contact_outputs(), std::logic_error);
+    }
+    sim.step(model.dt);
+    return std::pair{std::move(model.simulation), model.dt};
+  };
+  const auto [complete, dt] = run_with(ContactRecord::complete);
+  const auto [gathered, dt_gathered] = run_with(ContactRecord::gathered_only);
+  const ParticleStore& a = complete->particles();
+  const ParticleStore& b = gathered->particles();
+  // Enough candidates for the pair loop to be split between the threads (parallel.hpp),
+  // so that the pairs across the split are gathered.
+  EXPECT_GE(std::int64_t(complete->pair_contacts().size()), min_parallel_items);
+  EXPECT_TRUE(same_bits(a.position, b.position));
+  EXPECT_TRUE(same_bits(a.velocity, b.velocity));
+  EXPECT_TRUE(same_bits(a.angular_velocity, b.angular_velocity));
+  EXPECT_TRUE(same_bits(a.force, b.force));
+  EXPECT_TRUE(same_bits(a.moment, b.moment));
+  EXPECT_TRUE(same_bits(complete->pair_contacts().history, gathered->pair_contacts().history));
+  const ContactOutputs& ca = complete->contact_outputs();
+  const ContactOutputs& cb = gathered->contact_outputs();
+  EXPECT_TRUE(same_bits(ca.force, cb.force));
+  EXPECT_TRUE(same_bits(ca.point, cb.point));
+  EXPECT_TRUE(same_bits(ca.couple, cb.couple));
+  EXPECT_TRUE(same_bits(ca.shift, cb.shift));
+}
+
+TEST(Determinism, SkippingUnreadContactOutputsChangesNoBitInABondedPeriodicCell) {
+  // Bonded (couples) and periodic (image shifts), lattice-filled so that the
+  // model is built without a preparation stage. (The falling pile bed is no
+  // test of this: the pairs across the threads' split stay apart there, and
+  // stale zeros are right zeros. Here, writing no output for the gathered
+  // pairs fails the comparison.)
+  const nlohmann::json config = {
+      {"particles",
+       {{"generator", "lattice"},
+        {"region", {{"type", "box"}, {"min_m", {0, 0, 0}}, {"max_m", {0.02, 0.02, 0.02}}}},
+        {"radius_min_m", 4e-4},
+        {"radius_max_m", 6e-4},
+        {"density_kg_m3", 2650},
+        {"seed", 5}}},
+      {"contact",
+       {{"law", "linear_pbond"}, {"emod_pa", 1e8}, {"pb_emod_pa", 1e8}, {"pb_ten_pa", 1e4}, {"pb_coh_pa", 1e4}, {"bond_gap_m", 2e-4}}},
+      {"gravity_m_s2", {0, 0, -9810.0}},
+      {"periodic", {{"min_m", {0, 0, 0}}, {"max_m", {0.02, 0.02, 0.02}}}},
+      {"threads", 2},
+  };
+  expect_recording_changes_no_bit(config, 200);
 }
 
 }  // namespace

@@ -77,6 +77,9 @@ struct PairBlock {
 /// affine flow, and out.shift[k] = (x_i + d) - x_j receives the image offset
 /// of the second particle (its lever arm starts at x_j + shift).
 ///
+/// record (contact_lists.hpp ContactRecord): gathered_only writes force,
+/// point, couple and shift only for the pairs the integrator gathers.
+///
 /// Each range goes in blocks of pair_block_size: the candidates that carry
 /// nothing (apart, or across a gap with no intact bond) are written as
 /// separated first, then the acting ones are evaluated in increasing order.
@@ -85,8 +88,12 @@ struct PairBlock {
 /// `separated`), and where a +0 enters a sum does not change its bits.
 template <ContactLawKernel Law, class Space = OpenSpace>
 bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
-                            int threads, const Space& space = {}) {
+                            ContactRecord record, int threads, const Space& space = {}) {
   const auto chunks = static_cast<std::int64_t>(incidence.pair_chunks());
+  constexpr std::uint8_t both_direct = Incidence::direct_first | Incidence::direct_second;
+  const bool record_all = record == ContactRecord::complete;
+  // Whether pair k's outputs are written this step.
+  const auto recorded = [&](std::size_t k) { return record_all || incidence.direct[k] != both_direct; };
   bool excessive = false;
 #pragma omp parallel for schedule(static, 1) num_threads(threads) if(chunks > 1) reduction(|| : excessive)
   for (std::int64_t c = 0; c < chunks; ++c) {
@@ -102,7 +109,9 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         const std::uint32_t j = pairs.second[k];
         const Vec3 xi = p.position[i];
         const Vec3 d = space.branch(xi, p.position[j]);
-        if constexpr (Space::periodic) out.shift[k] = (xi + d) - p.position[j];
+        if constexpr (Space::periodic) {
+          if (recorded(k)) out.shift[k] = (xi + d) - p.position[j];
+        }
         const double reach = p.radius[i] + p.radius[j];
         const double dist2 = norm2(d);
         // 1 if the pair is evaluated, 0 if it carries nothing: an integer, so
@@ -125,9 +134,11 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
       for (std::size_t a = 0; a < block.apart_count; ++a) {
         const std::size_t k = first + block.apart[a];
         const std::uint32_t i = pairs.first[k];
-        out.force[k] = Vec3{};
-        out.point[k] = p.position[i];
-        if constexpr (Law::has_couple) out.couple[k] = Vec3{};
+        if (recorded(k)) {
+          out.force[k] = Vec3{};
+          out.point[k] = p.position[i];
+          if constexpr (Law::has_couple) out.couple[k] = Vec3{};
+        }
         law.separate(pairs.row(k));
         // The gather adds zeros here. Of those only the first body's +0 force
         // can change a bit (a -0 component of m g, from a -0 gravity component,
@@ -146,7 +157,7 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         const Vec3 d = block.branch[o];
         // Where j's lever arms start: its image next to i (j itself in open space).
         Vec3 xj_arm = p.position[j];
-        if constexpr (Space::periodic) xj_arm = p.position[j] + out.shift[k];
+        if constexpr (Space::periodic) xj_arm = p.position[j] + ((xi + d) - p.position[j]);  // + shift, as above
         const std::uint8_t direct = incidence.direct[k];
         const double ri = p.radius[i];
         const double rj = p.radius[j];
@@ -171,9 +182,11 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         ContactForce f;
         if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
         else f = law.evaluate(kin, history);
-        out.force[k] = f.on_first;
-        out.point[k] = point;
-        if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
+        if (recorded(k)) {
+          out.force[k] = f.on_first;
+          out.point[k] = point;
+          if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
+        }
         // The same terms the gather would add.
         if (direct & Incidence::direct_first) {
           add_contact_load(p.force[i], p.moment[i], f.on_first, point - xi);

@@ -71,6 +71,15 @@ struct ContactOutputs {
   void resize(std::size_t n, bool with_couple, std::size_t periodic_pairs = 0);
 };
 
+/// Which pair outputs a force evaluation writes. `complete`: all of them, for
+/// anything that reads the outputs after the step (measurements, results,
+/// servos). `gathered_only`: only those of pairs whose loads the integrator
+/// gathers (a body not marked in Incidence::direct); the others keep stale
+/// values. The particle resultants are the same bits either way: storing
+/// three vectors per contact that nobody reads cost 6 % of a step on the
+/// peer benchmark (docs/dem_benchmarks.md). Wall contacts are always written.
+enum class ContactRecord { complete, gathered_only };
+
 /// For every particle the contacts it takes part in, in increasing contact
 /// order. entry = contact << 1 | role, role 1 = the particle is the second body.
 ///
