@@ -57,30 +57,40 @@ double spread(const std::vector<double>& v) {
 // and 2 in the same 12 mm cell (about 2300 and 290 spheres). The issue's
 // criteria are peaks within ±10 % of each other and initial stiffness within
 // ±15 %; a spread (max − min)/mean below 10 % and 15 % is the stricter reading
-// (±10 % about the mean allows 20 %). Measured: 2.4 % and 5.2 %. Different
-// random packings of this size scatter by a few per cent (the full scenario,
-// 32000 / 4000 / 500 spheres: 3.0 % and 6.9 %), so the margin is real but not
-// loose. Round-off alone moves the 290-sphere S = 2 peak by up to 10 %
-// (docs/dem_upscaling.md: a rotation formula that differed in the last bits
-// gave 682.6 / 787.8 kPa), so a change that alters rounding may fail this test
-// without any physics being wrong; the cure is an ensemble of S = 2 packings. Each curve must also be a peak followed by softening (the peak is
-// not the last sample and the final stress is below 80 % of it), or the
-// comparison would be of unfinished loading.
+// (±10 % about the mean allows 20 %).
+//
+// One 290-sphere packing is too small to stand for S = 2: round-off alone
+// moved its peak by 10 % (a rotation formula that changed only the last bits
+// gave 714.6 -> 787.8 kPa; docs/dem_upscaling.md), and five seeds spread over
+// 680-799 kPa. So S = 2 runs in five packings (seeds 11-15) and enters the
+// comparison by its mean (measured: S = 1 697.4 kPa against a mean of
+// 724.0 kPa, spread 3.7 %); the mean of five has about 1/sqrt(5) of a single
+// packing's scatter, which leaves the 10 % criterion a real margin. Each
+// curve must also be a peak followed by softening (the peak is not the last
+// sample and the final stress is below 80 % of it), or the comparison would
+// be of unfinished loading.
 TEST(UpscalingRules, SoftBondRevKeepsPeakAndStiffnessAcrossScaleFactors) {
   const auto dir = run_variants("ucs_upscaling_small");
-  std::vector<double> peaks, stiffnesses;
-  for (const char* label : {"S1", "S2"}) {
+  const auto curve = [&](const std::string& label) {
     const auto results = dir / label / "results.h5";
     const Curve c = measure_curve(series(results, "dem_axial_strain"), series(results, "dem_axial_stress_pa"));
     std::cout << label << ": peak " << c.peak << " Pa, initial stiffness " << c.stiffness << " Pa, final " << c.final << " Pa\n";
     EXPECT_LT(c.at_peak + 1, series(results, "dem_axial_stress_pa").size()) << label << ": no softening branch";
     EXPECT_LT(c.final, 0.8 * c.peak) << label;
     EXPECT_GT(series(results, "dem_bonds_broken_shear").back(), 0.0) << label;
-    peaks.push_back(c.peak);
-    stiffnesses.push_back(c.stiffness);
+    return c;
+  };
+  const Curve s1 = curve("S1");
+  double peak2 = 0.0, stiffness2 = 0.0;
+  const std::vector<std::string> seeds{"S2_seed11", "S2_seed12", "S2_seed13", "S2_seed14", "S2_seed15"};
+  for (const auto& label : seeds) {
+    const Curve c = curve(label);
+    peak2 += c.peak / double(seeds.size());
+    stiffness2 += c.stiffness / double(seeds.size());
   }
-  EXPECT_LT(spread(peaks), 0.10);
-  EXPECT_LT(spread(stiffnesses), 0.15);
+  std::cout << "S2, mean of " << seeds.size() << " packings: peak " << peak2 << " Pa, initial stiffness " << stiffness2 << " Pa\n";
+  EXPECT_LT(spread({s1.peak, peak2}), 0.10);
+  EXPECT_LT(spread({s1.stiffness, stiffness2}), 0.15);
 }
 
 // Exact similarity: with the cell edge and the strain rate scaled with S as
