@@ -1,12 +1,13 @@
 #include "dfc/dem/measurements.hpp"
 
+#include <limits>
+
 namespace dfc::dem {
 
 Measurements measure(const Simulation& sim) {
   // Serial sums in slot / contact order: reproducible for any thread count.
   Measurements m;
   const ParticleStore& p = sim.particles();
-  const ContactOutputs& out = sim.contact_outputs();
   const double g = norm(sim.settings().gravity);
   m.particle_count = p.size();
   double unbalanced = 0.0;
@@ -15,6 +16,13 @@ Measurements measure(const Simulation& sim) {
     m.total_weight += p.mass[i] * g;
     unbalanced += norm(p.force[i]);
   }
+  if (!sim.contact_outputs_complete()) {
+    // A step in the middle of a run failed (the server then still answers
+    // queries): its contact outputs are partial, so the contact measures are unknown.
+    m.coordination_number = m.unbalanced_force_ratio = std::numeric_limits<double>::quiet_NaN();
+    return m;
+  }
+  const ContactOutputs& out = sim.contact_outputs();
   double contact_force_sum = 0.0;
   const std::size_t pairs = sim.pair_contacts().size();
   for (std::size_t k = 0; k < out.force.size(); ++k) {

@@ -1,5 +1,6 @@
 // Same input and thread count -> the same bits; and, because no sum depends on
 // how the work is split, 1 and 2 threads agree too (DESIGN §5).
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <utility>
@@ -168,6 +169,27 @@ TEST(Determinism, SkippingUnreadContactOutputsChangesNoBitInABondedPeriodicCell)
       {"threads", 2},
   };
   expect_recording_changes_no_bit(config, 200);
+}
+
+// A step in the middle of a run that fails leaves partial contact outputs; the
+// DEM server still answers queries after a failure, so the measurements must
+// stay readable: particle sums as usual, contact measures unknown (NaN).
+TEST(Determinism, AFailedGatheredOnlyStepLeavesMeasurementsReadable) {
+  const double r = 1e-3;
+  const nlohmann::json config = {
+      {"particles", {{"generator", "list"}, {"spheres", {{0.0, 0.0, 0.0, r}, {1.2 * r, 0.0, 0.0, r}}}, {"density_kg_m3", 2650}}},
+      {"contact", {{"law", "linear"}, {"kn_n_m", 1e5}, {"ks_n_m", 5e4}}},
+  };
+  DemModel model = build_model(parse_dem_config(config));
+  Simulation& sim = *model.simulation;
+  // The spheres overlap by 0.8 r, beyond max_overlap_fraction: the first step fails.
+  EXPECT_THROW(sim.step(model.dt, ContactRecord::gathered_only), SolverError);
+  EXPECT_FALSE(sim.contact_outputs_complete());
+  Measurements m;
+  EXPECT_NO_THROW(m = measure(sim));
+  EXPECT_EQ(m.particle_count, 2u);
+  EXPECT_TRUE(std::isnan(m.coordination_number));
+  EXPECT_TRUE(std::isnan(m.unbalanced_force_ratio));
 }
 
 }  // namespace

@@ -99,6 +99,9 @@ class Simulation {
   [[nodiscard]] const WallContacts& wall_contacts(std::size_t wall) const { return wall_contacts_.at(wall); }
   /// Logic error after a step that recorded only the gathered outputs.
   [[nodiscard]] const ContactOutputs& contact_outputs() const;
+  /// False only after a step that recorded the gathered outputs alone: in the
+  /// middle of a run, or when such a step failed (SolverError).
+  [[nodiscard]] bool contact_outputs_complete() const noexcept { return outputs_complete_; }
   /// Where wall `wall`'s contacts start in contact_outputs().
   [[nodiscard]] std::size_t wall_output_offset(std::size_t wall) const { return wall_offsets_.at(wall); }
   [[nodiscard]] std::int64_t step_count() const noexcept { return step_; }
