@@ -6,8 +6,8 @@
 #   bench/dem_peers.sh [BUILD_DIR]        (default build; builds dem_throughput)
 # Environment: SIZE=12k|50k (12k), WARMUP (1000), STEPS (2000), REPEAT (3 rounds), PEERS_DIR.
 # Installs the Debian packages lammps liggghts openmpi-bin if missing (needs root).
-# Differences of our run from the peers' (docs/dem_benchmarks.md): no periodic
-# x/y boundaries (frictionless side walls instead), no tangential dashpot.
+# Differences of our run from the peers' (docs/dem_benchmarks.md): the normal
+# dashpot as a fraction of critical, no tangential dashpot.
 # Not part of the default test run.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)

@@ -101,6 +101,7 @@ Options parse(int argc, char** argv) {
       for (int t = 0; list >> t;) o.threads.push_back(t);
     } else throw std::runtime_error("unknown option " + a);
   }
+  if (o.digest && o.data.empty()) throw std::runtime_error("--digest needs --data (it hashes the peer benchmark's final state)");
   return o;
 }
 

@@ -63,6 +63,7 @@ struct PairBlock {
   std::uint32_t apart[pair_block_size];    ///< offsets of those that carry nothing this step, increasing
   Vec3 branch[pair_block_size];            ///< x_j - x_i (minimum image), by offset
   double distance2[pair_block_size];       ///< |branch|^2, by offset
+  double distance[pair_block_size];        ///< |branch|, by offset, for laws that skip idle gaps (the classification needs it)
   std::size_t acting_count = 0;
   std::size_t apart_count = 0;
 };
@@ -84,8 +85,8 @@ struct PairBlock {
 /// nothing (apart, or across a gap with no intact bond) are written as
 /// separated first, then the acting ones are evaluated in increasing order.
 /// The order of the additions into a particle is therefore that of the
-/// acting contacts, as before; a separated pair adds only a +0 (see
-/// `separated`), and where a +0 enters a sum does not change its bits.
+/// acting contacts, as before; a separated pair adds only a +0 (step 2 in
+/// the body), and where a +0 enters a sum does not change its bits.
 template <ContactLawKernel Law, class Space = OpenSpace>
 bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
                             ContactRecord record, int threads, const Space& space = {}) {
@@ -121,7 +122,8 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
           acting = std::size_t(!(dist2 >= reach * reach));
         } else if constexpr (SkipsIdleGaps<Law>) {
           // The same test as the law's own (overlap <= 0), so the result is the law's.
-          acting = 1 - (std::size_t(reach - std::sqrt(dist2) <= 0.0) & std::size_t(Law::idle_across_gap(pairs.row(k))));
+          block.distance[o] = std::sqrt(dist2);
+          acting = 1 - (std::size_t(reach - block.distance[o] <= 0.0) & std::size_t(Law::idle_across_gap(pairs.row(k))));
         }
         block.branch[o] = d;
         block.distance2[o] = dist2;
@@ -161,7 +163,9 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         const std::uint8_t direct = incidence.direct[k];
         const double ri = p.radius[i];
         const double rj = p.radius[j];
-        const double dist = std::sqrt(block.distance2[o]);
+        double dist = 0.0;
+        if constexpr (SkipsIdleGaps<Law>) dist = block.distance[o];
+        else dist = std::sqrt(block.distance2[o]);
         // Coincident centres have no direction; any fixed one keeps the run deterministic.
         const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
         ContactKinematics kin;

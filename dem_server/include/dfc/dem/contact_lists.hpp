@@ -76,8 +76,9 @@ struct ContactOutputs {
 /// servos). `gathered_only`: only those of pairs whose loads the integrator
 /// gathers (a body not marked in Incidence::direct); the others keep stale
 /// values. The particle resultants are the same bits either way: storing
-/// three vectors per contact that nobody reads cost 6 % of a step on the
-/// peer benchmark (docs/dem_benchmarks.md). Wall contacts are always written.
+/// three or four vectors per contact that nobody reads cost about 5 % of a
+/// step on the peer benchmark (docs/dem_benchmarks.md). Wall contacts are
+/// always written.
 enum class ContactRecord { complete, gathered_only };
 
 /// For every particle the contacts it takes part in, in increasing contact

@@ -19,6 +19,9 @@ struct Measurements {
   /// contacts the denominator is the mean weight (free fall reads 1); 0 when
   /// nothing acts at all. Tends to 0 at equilibrium (PFC reports ~1e-5 as settled).
   double unbalanced_force_ratio = 0.0;
+  // After a step that failed in the middle of a run (partial contact outputs,
+  // Simulation::contact_outputs_complete() false) the contact counts are 0 and
+  // coordination_number and unbalanced_force_ratio are NaN: unknown.
 
   [[nodiscard]] std::size_t contact_count() const noexcept { return pair_contact_count + wall_contact_count; }
 };
