@@ -158,7 +158,7 @@ PeerPacking read_lammps_data(const std::string& path) {
   return pack;
 }
 
-/// The peers' contact; "linear_pbond": the same contact with an unbreakable bond on every touching pair.
+/// The peers' contact; "linear_pbond": the same contact with an unbreakable bond on every pair within 10 um of touching.
 nlohmann::json peer_law(const std::string& law) {
   if (law == "linear") return {{"kn_n_m", 1e5}, {"ks_n_m", 1e5 * 2.0 / 7.0}, {"friction", 0.5}, {"damping_ratio_normal", 0.215}};
   const double emod = 1e5 / (std::numbers::pi * 0.55e-3 / 2.0);

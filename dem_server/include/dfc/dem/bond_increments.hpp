@@ -1,7 +1,7 @@
 #pragma once
 // Relative motion of the two bodies across a bond during one step, split in
-// the contact frame (reference/dem-physics.md §2.3, §8 item 3), and the
-// rotation of stored in-plane vectors with the contact plane.
+// the contact frame (reference/dem-physics.md §2.3, §8 item 3). Stored
+// in-plane vectors turn with the contact plane (contact_plane_rotation.hpp).
 //
 // Sign convention of every bonded law (reference §8 item 7 asks for one):
 // opening and the normal bond force N are positive in TENSION (unlike the
@@ -26,15 +26,7 @@ struct BondIncrements {
   return {vn * k.dt, k.dt * (k.relative_velocity - vn * n), wn * k.dt, k.dt * (k.relative_angular_velocity - wn * n)};
 }
 
-[[nodiscard]] inline Vec3 load_vec3(const double* h) noexcept { return {h[0], h[1], h[2]}; }
-inline void store_vec3(double* h, const Vec3& v) noexcept {
-  h[0] = v.x;
-  h[1] = v.y;
-  h[2] = v.z;
-}
-/// A stored in-plane vector (shear force, bending moment, shear or bending
-/// displacement) carried into the current contact plane, magnitude kept
-/// (the same first-order rotation as the linear law's shear force).
+/// A stored in-plane vector carried into the current contact plane, magnitude kept.
 [[nodiscard]] inline Vec3 load_in_plane(const double* h, const Vec3& normal) noexcept { return rotate_into_contact_plane(load_vec3(h), normal); }
 
 }  // namespace dfc::dem

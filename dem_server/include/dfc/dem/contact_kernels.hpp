@@ -14,6 +14,7 @@
 #include "dfc/dem/contact_lists.hpp"
 #include "dfc/dem/parallel.hpp"
 #include "dfc/dem/contact_model.hpp"
+#include "dfc/dem/contact_plane_rotation.hpp"
 #include "dfc/dem/particle_loads.hpp"
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/periodic_cell.hpp"
@@ -68,6 +69,19 @@ struct PairBlock {
   std::size_t apart_count = 0;
 };
 
+/// The acting pairs of a block go through the law in stages of this many:
+/// first all their kinematics, then (RotatesInPlaneHistory) all their stored
+/// in-plane vectors into the current contact planes, then the law itself.
+/// Each stage is a short loop of independent iterations, so the divisions and
+/// square roots of successive contacts overlap instead of each one stalling
+/// its own contact (measured on the peer benchmark: docs/dem_benchmarks.md).
+inline constexpr std::size_t pair_stage_size = 64;
+
+struct PairStage {
+  ContactKinematics kinematics[pair_stage_size];
+  Vec3 point[pair_stage_size];  ///< contact points
+};
+
 /// Evaluates every pair candidate into outputs[0, pairs.size()), and adds
 /// each contact's force and moment to the bodies Incidence::direct marks (the
 /// prefix of their sums, particle_loads.hpp; p.force/moment must have been
@@ -100,6 +114,7 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::size_t range_end = incidence.chunk_start[std::size_t(c) + 1];
     PairBlock block;
+    PairStage stage;
     for (std::size_t first = incidence.chunk_start[std::size_t(c)]; first < range_end; first += pair_block_size) {
       const std::size_t count = std::min(pair_block_size, range_end - first);
       // 1. Classify (no branch on the outcome: both lists get a slot, one count moves).
@@ -148,58 +163,79 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
         // do zero moments (a moment sum starts at +0, so it is never -0).
         if (incidence.direct[k] & Incidence::direct_first) p.force[i] += Vec3{};
       }
-      // 3. The acting pairs, in increasing order.
-      for (std::size_t a = 0; a < block.acting_count; ++a) {
-        const std::size_t o = block.acting[a];
-        const std::size_t k = first + o;
-        const std::uint32_t i = pairs.first[k];
-        const std::uint32_t j = pairs.second[k];
-        double* history = pairs.row(k);
-        const Vec3 xi = p.position[i];
-        const Vec3 d = block.branch[o];
-        // Where j's lever arms start: its image next to i (j itself in open space).
-        Vec3 xj_arm = p.position[j];
-        if constexpr (Space::periodic) xj_arm = p.position[j] + ((xi + d) - p.position[j]);  // + shift, as above
-        const std::uint8_t direct = incidence.direct[k];
-        const double ri = p.radius[i];
-        const double rj = p.radius[j];
-        double dist = 0.0;
-        if constexpr (SkipsIdleGaps<Law>) dist = block.distance[o];
-        else dist = std::sqrt(block.distance2[o]);
-        // Coincident centres have no direction; any fixed one keeps the run deterministic.
-        const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
-        ContactKinematics kin;
-        kin.normal = normal;
-        kin.overlap = (ri + rj) - dist;
-        excessive = excessive || kin.overlap > max_overlap_fraction * std::min(ri, rj);
-        // Contact point in the middle of the overlap (PFC ball–ball convention).
-        const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
-        const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
-        // Centre of j's image next to i (j itself in open space, so those bits are unchanged).
-        const Vec3 xj = Space::periodic ? xi + d : p.position[j];
-        const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - xj);
-        kin.relative_velocity = vj - vi;
-        if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
-        kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
-        set_pair_bodies(p, i, j, kin);
-        kin.dt = dt;
-        ContactForce f;
-        if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
-        else f = law.evaluate(kin, history);
-        if (recorded(k)) {
-          out.force[k] = f.on_first;
-          out.point[k] = point;
-          if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
+      // 3. The acting pairs, in increasing order, a stage at a time.
+      for (std::size_t stage_first = 0; stage_first < block.acting_count; stage_first += pair_stage_size) {
+        const std::size_t stage_count = std::min(pair_stage_size, block.acting_count - stage_first);
+        // 3a. Kinematics.
+        for (std::size_t a = 0; a < stage_count; ++a) {
+          const std::size_t o = block.acting[stage_first + a];
+          const std::size_t k = first + o;
+          const std::uint32_t i = pairs.first[k];
+          const std::uint32_t j = pairs.second[k];
+          const Vec3 xi = p.position[i];
+          const Vec3 d = block.branch[o];
+          const double ri = p.radius[i];
+          const double rj = p.radius[j];
+          double dist = 0.0;
+          if constexpr (SkipsIdleGaps<Law>) dist = block.distance[o];
+          else dist = std::sqrt(block.distance2[o]);
+          // Coincident centres have no direction; any fixed one keeps the run deterministic.
+          const Vec3 normal = dist > 0.0 ? (1.0 / dist) * d : Vec3{0.0, 0.0, 1.0};
+          ContactKinematics& kin = stage.kinematics[a];
+          kin.normal = normal;
+          kin.overlap = (ri + rj) - dist;
+          excessive = excessive || kin.overlap > max_overlap_fraction * std::min(ri, rj);
+          // Contact point in the middle of the overlap (PFC ball–ball convention).
+          const Vec3 point = xi + (ri - 0.5 * kin.overlap) * normal;
+          stage.point[a] = point;
+          const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - xi);
+          // Centre of j's image next to i (j itself in open space, so those bits are unchanged).
+          const Vec3 xj = Space::periodic ? xi + d : p.position[j];
+          const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - xj);
+          kin.relative_velocity = vj - vi;
+          if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
+          kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
+          set_pair_bodies(p, i, j, kin);
+          kin.dt = dt;
         }
-        // The same terms the gather would add.
-        if (direct & Incidence::direct_first) {
-          add_contact_load(p.force[i], p.moment[i], f.on_first, point - xi);
-          if constexpr (Law::has_couple) p.moment[i] += f.couple_on_first;
+        // 3b. Stored in-plane vectors into the current contact planes.
+        if constexpr (RotatesInPlaneHistory<Law>) {
+          for (std::size_t a = 0; a < stage_count; ++a)
+            rotate_in_plane_history<Law>(pairs.row(first + block.acting[stage_first + a]), stage.kinematics[a].normal);
         }
-        if (direct & Incidence::direct_second) {
-          const Vec3 on_second = -1.0 * f.on_first;
-          add_contact_load(p.force[j], p.moment[j], on_second, point - xj_arm);
-          if constexpr (Law::has_couple) p.moment[j] += -1.0 * f.couple_on_first;
+        // 3c. The law, the outputs and the loads.
+        for (std::size_t a = 0; a < stage_count; ++a) {
+          const std::size_t o = block.acting[stage_first + a];
+          const std::size_t k = first + o;
+          const std::uint32_t i = pairs.first[k];
+          const std::uint32_t j = pairs.second[k];
+          double* history = pairs.row(k);
+          const ContactKinematics& kin = stage.kinematics[a];
+          ContactForce f;
+          if constexpr (RotatesInPlaneHistory<Law>) f = law.evaluate_in_plane(kin, pairs.constants_row(k), history);
+          else if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
+          else f = law.evaluate(kin, history);
+          const Vec3 point = stage.point[a];
+          if (recorded(k)) {
+            out.force[k] = f.on_first;
+            out.point[k] = point;
+            if constexpr (Law::has_couple) out.couple[k] = f.couple_on_first;
+          }
+          // The same terms the gather would add.
+          const std::uint8_t direct = incidence.direct[k];
+          const Vec3 xi = p.position[i];
+          if (direct & Incidence::direct_first) {
+            add_contact_load(p.force[i], p.moment[i], f.on_first, point - xi);
+            if constexpr (Law::has_couple) p.moment[i] += f.couple_on_first;
+          }
+          if (direct & Incidence::direct_second) {
+            // Where j's lever arms start: its image next to i (j itself in open space).
+            Vec3 xj_arm = p.position[j];
+            if constexpr (Space::periodic) xj_arm = p.position[j] + ((xi + block.branch[o]) - p.position[j]);  // + shift, as above
+            const Vec3 on_second = -1.0 * f.on_first;
+            add_contact_load(p.force[j], p.moment[j], on_second, point - xj_arm);
+            if constexpr (Law::has_couple) p.moment[j] += -1.0 * f.couple_on_first;
+          }
         }
       }
     }

@@ -91,6 +91,22 @@ concept HasPairConstants = ContactLawKernel<Law> && requires(const Law law, cons
   { law.evaluate(k, constants, history) } -> std::same_as<ContactForce>;
 };
 
+/// Optional part of a law whose history holds in-plane vectors (shear forces,
+/// bending moments) that turn with the contact plane every step:
+/// Law::in_plane_history lists their offsets in the history row (3 doubles
+/// each; contact_plane_rotation.hpp rotate_in_plane_history), and
+/// `evaluate_in_plane(k, constants, history)` is `evaluate(k, constants,
+/// history)` for a history already carried into k's plane. The pair loop
+/// rotates a batch of contacts before it evaluates them: each rotation's
+/// division and square root are then independent of the next contact's, and
+/// the processor overlaps them instead of waiting on each (the operations
+/// are the same, so are the results).
+template <class Law>
+concept RotatesInPlaneHistory = HasPairConstants<Law> && requires(const Law law, const ContactKinematics& k, const double* constants, double* history) {
+  { Law::in_plane_history.size() } -> std::convertible_to<std::size_t>;
+  { law.evaluate_in_plane(k, constants, history) } -> std::same_as<ContactForce>;
+};
+
 /// Optional part of a law that acts across a gap (a bond): true when this
 /// contact's history says it carries nothing while the surfaces are apart
 /// (e.g. no intact bond), where evaluate would return zero and only call

@@ -9,6 +9,7 @@
 //
 // History: the shear force on the first body, 3 components in global axes,
 // rotated with the contact plane every step.
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -16,20 +17,9 @@
 #include <vector>
 
 #include "dfc/dem/contact_model.hpp"
+#include "dfc/dem/contact_plane_rotation.hpp"
 
 namespace dfc::dem {
-
-/// Projects the stored shear force onto the plane normal to `normal` and
-/// restores its magnitude: the first-order rotation of the shear force with
-/// the contact plane used by PFC and LAMMPS gran/hooke/history.
-[[nodiscard]] inline Vec3 rotate_into_contact_plane(const Vec3& shear, const Vec3& normal) noexcept {
-  const double before2 = norm2(shear);
-  if (before2 == 0.0) return shear;
-  const Vec3 projected = shear - dot(shear, normal) * normal;
-  const double after2 = norm2(projected);
-  if (after2 == 0.0) return projected;
-  return std::sqrt(before2 / after2) * projected;
-}
 
 /// Caps |shear| at `limit` (>= 0) keeping its direction (Coulomb slip).
 [[nodiscard]] inline Vec3 coulomb_limit(const Vec3& shear, double limit) noexcept {
@@ -72,14 +62,23 @@ struct LinearLaw {
     return evaluate(k, c, history);
   }
 
+  /// The shear force turns with the contact plane (RotatesInPlaneHistory).
+  static constexpr std::array<std::size_t, 1> in_plane_history{0};
+
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, const double* constants, double* history) const noexcept {
+    rotate_in_plane_history<LinearLaw>(history, k.normal);
+    return evaluate_in_plane(k, constants, history);
+  }
+
+  /// evaluate() for a history already carried into k's contact plane.
+  [[nodiscard]] ContactForce evaluate_in_plane(const ContactKinematics& k, const double* constants, double* history) const noexcept {
     const Vec3& n = k.normal;
     const double fn_spring = kn * k.overlap;  // compression positive; overlap > 0 here, so never tensile
     const double vn = dot(k.relative_velocity, n);  // > 0 opening
     // Like PFC's default full mode the dashpot may make the total normal force tensile while opening.
     const double fn_dashpot = damping_ratio_normal > 0.0 ? constants[0] * vn : 0.0;
 
-    Vec3 shear = rotate_into_contact_plane({history[0], history[1], history[2]}, n);
+    Vec3 shear = load_vec3(history);
     // The second body's contact point moving by v_t dt drags the first body along v_t.
     shear += (ks * k.dt) * (k.relative_velocity - vn * n);
     shear = coulomb_limit(shear, friction * fn_spring);
@@ -91,6 +90,6 @@ struct LinearLaw {
   }
 };
 
-static_assert(HasPairConstants<LinearLaw>);
+static_assert(RotatesInPlaneHistory<LinearLaw>);
 
 }  // namespace dfc::dem

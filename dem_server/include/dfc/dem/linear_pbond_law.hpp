@@ -14,6 +14,7 @@
 //   it only decides the label when both limits are passed in one step).
 //
 // History (12): state, BondLoad (8), linear shear force (3).
+#include <array>
 #include <cmath>
 #include <span>
 #include <string_view>
@@ -82,14 +83,25 @@ struct LinearPbondLaw {
     return evaluate(k, c, history);
   }
 
+  [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, const double* c, double* history) const noexcept {
+    rotate_in_plane_history<LinearPbondLaw>(history, k.normal);
+    return evaluate_in_plane(k, c, history);
+  }
+
+  /// The bond's shear force and bending moment and the linear part's shear
+  /// force turn with the contact plane (RotatesInPlaneHistory).
+  static constexpr std::array<std::size_t, 3> in_plane_history{load_offset + BondLoad::shear_offset, load_offset + BondLoad::bend_offset,
+                                                               linear_offset};
+
+  /// evaluate() for a history already carried into k's contact plane.
   // always_inline: at this size GCC kept it out of line, a call per contact
   // with the kinematics passed through memory (measured: +14 % bonded throughput inlined).
-  [[nodiscard]] [[gnu::always_inline]] ContactForce evaluate(const ContactKinematics& k, const double* c, double* history) const noexcept {
+  [[nodiscard]] [[gnu::always_inline]] ContactForce evaluate_in_plane(const ContactKinematics& k, const double* c, double* history) const noexcept {
     ContactForce out{};
     BondState state = bond_state(history);
     if (state == BondState::intact) {
       const BondSection s = bond_section(k, radius_multiplier);
-      BondLoad load = BondLoad::load(history + load_offset, k.normal);
+      BondLoad load = BondLoad::load_in_current_plane(history + load_offset);
       load.add_elastic(bond_increments(k), s, c[kn_bond], c[ks_bond]);
       if (!surely_below_limits(load, s, c[moment_per_radius], tensile_strength, cohesion, tan_friction_angle)) {
         const PeakStresses peak = peak_stresses(load, s, moment_factor);
@@ -110,7 +122,7 @@ struct LinearPbondLaw {
       separate(history);
       return out;
     }
-    out.on_first += linear_part(c).evaluate(k, c + dashpot_linear, shear).on_first;
+    out.on_first += linear_part(c).evaluate_in_plane(k, c + dashpot_linear, shear).on_first;
     return out;
   }
 
@@ -121,6 +133,6 @@ struct LinearPbondLaw {
   }
 };
 
-static_assert(HasPairConstants<LinearPbondLaw> && SkipsIdleGaps<LinearPbondLaw>);
+static_assert(RotatesInPlaneHistory<LinearPbondLaw> && SkipsIdleGaps<LinearPbondLaw>);
 
 }  // namespace dfc::dem

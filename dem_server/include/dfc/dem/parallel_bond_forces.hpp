@@ -14,6 +14,8 @@ namespace dfc::dem {
 /// History layout (8 doubles from `h`): N, F_s (3), M_t, M_b (3).
 struct BondLoad {
   static constexpr std::size_t history_size = 8;
+  static constexpr std::size_t shear_offset = 1;  ///< of F_s in the layout, an in-plane vector
+  static constexpr std::size_t bend_offset = 5;   ///< of M_b, an in-plane vector
 
   double normal = 0.0;  ///< N, N (tension positive)
   Vec3 shear;           ///< N, in the contact plane
@@ -22,13 +24,17 @@ struct BondLoad {
 
   /// Reads the stored load, carrying shear and bending into the current plane.
   [[nodiscard]] static BondLoad load(const double* h, const Vec3& normal) noexcept {
-    return {h[0], load_in_plane(h + 1, normal), h[4], load_in_plane(h + 5, normal)};
+    return {h[0], load_in_plane(h + shear_offset, normal), h[4], load_in_plane(h + bend_offset, normal)};
+  }
+  /// Reads a stored load already carried into the current plane.
+  [[nodiscard]] static BondLoad load_in_current_plane(const double* h) noexcept {
+    return {h[0], load_vec3(h + shear_offset), h[4], load_vec3(h + bend_offset)};
   }
   void store(double* h) const noexcept {
     h[0] = normal;
-    store_vec3(h + 1, shear);
+    store_vec3(h + shear_offset, shear);
     h[4] = twist;
-    store_vec3(h + 5, bend);
+    store_vec3(h + bend_offset, bend);
   }
   static void clear(double* h) noexcept {
     for (std::size_t c = 0; c < history_size; ++c) h[c] = 0.0;

@@ -1,0 +1,159 @@
+// The pair loop (contact_kernels.hpp evaluate_pair_contacts) against the law
+// applied contact by contact.
+//
+// The loop classifies candidates in blocks, writes the idle ones first, and
+// evaluates the acting ones in stages (all kinematics, then all in-plane
+// history rotations, then the law). None of that may change a result: every
+// contact's force, couple and history must be, bit for bit, what the law's
+// own evaluate(kinematics, history) gives for that contact alone, with the
+// kinematics of the documented convention (normal from the first centre to
+// the second, contact point in the middle of the overlap, velocities of the
+// material points there). The chain below has more candidates than a block
+// (256) and more acting pairs than a stage (64), and mixes overlapping,
+// gap-bonded, broken and separated pairs, so every path of the loop runs.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "dfc/dem/contact_kernels.hpp"
+#include "dfc/dem/linear_law.hpp"
+#include "dfc/dem/linear_pbond_law.hpp"
+
+namespace dfc::dem {
+namespace {
+
+constexpr std::size_t sphere_count = 700;
+constexpr double radius = 1e-3;
+constexpr double dt = 1e-6;
+
+/// A jittered chain along x: pair (k, k+1) overlaps, sits in a small gap or is
+/// apart; random velocities and spins.
+ParticleStore jittered_chain(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  ParticleStore p;
+  double x = 0.0;
+  for (std::size_t s = 0; s < sphere_count; ++s) {
+    const double r = radius * (1.0 + 0.1 * unit(rng));
+    if (s > 0) x += p.radius[s - 1] + r + 0.04 * radius * unit(rng);  // surface gap in [-4 %, 4 %] of R
+    p.add_sphere(std::int64_t(s), {x, 0.05 * radius * unit(rng), 0.05 * radius * unit(rng)}, r, 2650.0);
+    p.velocity[s] = {0.01 * unit(rng), 0.01 * unit(rng), 0.01 * unit(rng)};
+    p.angular_velocity[s] = {10.0 * unit(rng), 10.0 * unit(rng), 10.0 * unit(rng)};
+  }
+  p.force.assign(p.size(), Vec3{});
+  p.moment.assign(p.size(), Vec3{});
+  return p;
+}
+
+/// Candidates (k, k+1) with history rows of random values, in-plane vectors
+/// not in the current plane (the loop must rotate them); `prepare` sets
+/// law-specific columns (e.g. the bond state).
+template <class Law, class Prepare>
+PairContacts chain_pairs(const Law& law, const ParticleStore& p, std::mt19937_64& rng, const Prepare& prepare) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  PairContacts pairs;
+  pairs.stride = Law::history_size;
+  for (std::uint32_t s = 0; s + 1 < p.size(); ++s) {
+    pairs.first.push_back(s);
+    pairs.second.push_back(s + 1);
+  }
+  pairs.history.resize(pairs.size() * pairs.stride);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    for (std::size_t c = 0; c < pairs.stride; ++c) pairs.row(k)[c] = 1e-3 * unit(rng);
+    prepare(k, pairs.row(k));
+  }
+  compute_pair_constants(law, p, pairs);
+  return pairs;
+}
+
+/// The law on one contact, kinematics built here from the convention.
+template <class Law>
+ContactForce evaluate_alone(const Law& law, const ParticleStore& p, std::uint32_t i, std::uint32_t j, double* history) {
+  const Vec3 d = p.position[j] - p.position[i];
+  const double dist = std::sqrt(norm2(d));
+  ContactKinematics kin;
+  kin.normal = (1.0 / dist) * d;
+  kin.overlap = (p.radius[i] + p.radius[j]) - dist;
+  if (kin.overlap <= 0.0 && !Law::acts_across_gap) {
+    law.separate(history);
+    return {};
+  }
+  const Vec3 point = p.position[i] + (p.radius[i] - 0.5 * kin.overlap) * kin.normal;
+  const Vec3 vi = p.velocity[i] + cross(p.angular_velocity[i], point - p.position[i]);
+  const Vec3 vj = p.velocity[j] + cross(p.angular_velocity[j], point - p.position[j]);
+  kin.relative_velocity = vj - vi;
+  kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
+  kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+  kin.radius_first = p.radius[i];
+  kin.radius_second = p.radius[j];
+  kin.dt = dt;
+  return law.evaluate(kin, history);
+}
+
+/// Returns the pairs after the step.
+template <class Law, class Prepare>
+PairContacts expect_loop_equals_law_alone(const Law& law, const Prepare& prepare) {
+  std::mt19937_64 rng(20261123);
+  ParticleStore p = jittered_chain(rng);
+  PairContacts pairs = chain_pairs(law, p, rng, prepare);
+  std::vector<double> expected_history = pairs.history;
+  const Incidence incidence = build_incidence(p.size(), pairs, {}, {}, 1);
+  ContactOutputs out;
+  out.resize(pairs.size(), Law::has_couple);
+  evaluate_pair_contacts(law, p, pairs, incidence, out, dt, ContactRecord::complete, 1);
+
+  std::size_t acting = 0;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    double* row = expected_history.data() + k * pairs.stride;
+    const ContactForce f = evaluate_alone(law, p, pairs.first[k], pairs.second[k], row);
+    if (f.on_first != Vec3{}) ++acting;
+    // Bit for bit: the same operations on the same values (EXPECT_EQ on doubles is exact).
+    EXPECT_EQ(out.force[k], f.on_first) << "pair " << k;
+    if constexpr (Law::has_couple) {
+      EXPECT_EQ(out.couple[k], f.couple_on_first) << "pair " << k;
+    }
+    for (std::size_t c = 0; c < pairs.stride; ++c) EXPECT_EQ(pairs.row(k)[c], row[c]) << "pair " << k << " column " << c;
+  }
+  // The chain must exercise more than one block and stage of acting pairs.
+  EXPECT_GT(acting, pair_stage_size + 1);
+  EXPECT_GT(pairs.size(), pair_block_size + 1);
+  return pairs;
+}
+
+TEST(PairLoop, LinearContactsAreWhatTheLawGivesEachContactAlone) {
+  const LinearLaw law{.kn = 1e5, .ks = 2e4, .friction = 0.5, .damping_ratio_normal = 0.2};
+  expect_loop_equals_law_alone(law, [](std::size_t, double*) {});
+}
+
+TEST(PairLoop, ParallelBondContactsAreWhatTheLawGivesEachContactAlone) {
+  // Strengths within the spread of the random loads: this step some bonds
+  // stay intact and some break, in tension and in shear (asserted below).
+  LinearPbondLaw law{.emod = 1e8, .kratio = 2.0, .friction = 0.5, .damping_ratio_normal = 0.1, .bond_emod = 1e8, .bond_kratio = 2.0,
+                     .radius_multiplier = 1.0, .moment_factor = 1.0, .tensile_strength = 2e3, .cohesion = 1e3, .tan_friction_angle = 0.5};
+  // Two pairs in three bonded (intact), the others broken earlier: no bond load.
+  PairContacts after = expect_loop_equals_law_alone(law, [](std::size_t k, double* row) {
+    // Moments of the size of force x radius: the peak stresses of the
+    // forces and of the moments are then of one order.
+    for (std::size_t c = 4; c < 8; ++c) row[LinearPbondLaw::load_offset + c] *= radius;
+    if (k % 3 == 2) {
+      set_bond_state(row, BondState::broken_tension);
+      BondLoad::clear(row + LinearPbondLaw::load_offset);
+    } else {
+      set_bond_state(row, BondState::intact);
+    }
+  });
+  std::size_t intact = 0, broke_in_shear = 0, broke_in_tension_now = 0;
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const BondState s = bond_state(after.row(k));
+    intact += s == BondState::intact;
+    broke_in_shear += s == BondState::broken_shear;
+    broke_in_tension_now += k % 3 != 2 && s == BondState::broken_tension;
+  }
+  EXPECT_GT(intact, 0U);
+  EXPECT_GT(broke_in_shear, 0U);
+  EXPECT_GT(broke_in_tension_now, 0U);
+}
+
+}  // namespace
+}  // namespace dfc::dem
