@@ -1,6 +1,9 @@
 #include "dfc/dem/periodic_cell.hpp"
 
+#include <cstdint>
 #include <limits>
+
+#include "dfc/dem/parallel.hpp"
 
 namespace dfc::dem {
 
@@ -25,14 +28,21 @@ Vec3 PeriodicCell::wrap(const Vec3& x) const noexcept {
 
 Vec3 PeriodicCell::minimum_image(const Vec3& d) const noexcept { return PeriodicSpace(*this).branch(Vec3{}, d); }
 
-void PeriodicCell::deform(double dt, std::span<Vec3> positions, std::span<Vec3> references) noexcept {
+void PeriodicCell::deform(double dt, std::span<Vec3> positions, std::span<Vec3> references, int threads) noexcept {
   const Vec3 c = centre();
   const Vec3 f{1.0 + strain_rate.x * dt, 1.0 + strain_rate.y * dt, 1.0 + strain_rate.z * dt};
   const auto stretch = [&](Vec3& x) { x = {c.x + f.x * (x.x - c.x), c.y + f.y * (x.y - c.y), c.z + f.z * (x.z - c.z)}; };
+  // Every point on its own: the same bits for any thread count. (Serial, this
+  // loop was 3 % of a two-thread step of the peer benchmark, idling the other thread.)
+  const auto n = std::int64_t(positions.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t i = 0; i < n; ++i) {
+    stretch(positions[std::size_t(i)]);
+    if (std::size_t(i) < references.size()) stretch(references[std::size_t(i)]);
+  }
+  for (std::size_t i = positions.size(); i < references.size(); ++i) stretch(references[i]);
   stretch(lo);
   stretch(hi);
-  for (auto& x : positions) stretch(x);
-  for (auto& x : references) stretch(x);
 }
 
 namespace {

@@ -251,7 +251,7 @@ void Simulation::step(double dt, ContactRecord record) {
     // most 2 r_max + skin apart) closer by at most max_a |rate_a dt| times that.
     const Vec3 r = cell_->strain_rate;
     affine_approach_ += std::max({std::abs(r.x), std::abs(r.y), std::abs(r.z)}) * dt * (2.0 * r_max_ + skin_);
-    cell_->deform(dt, particles_.position, reference_positions_);
+    cell_->deform(dt, particles_.position, reference_positions_, threads_);
   }
   ++step_;
 

@@ -42,8 +42,9 @@ struct PeriodicCell {
   /// Minimum image of a difference vector on the periodic axes (|d_a| < 1.5 L_a).
   [[nodiscard]] Vec3 minimum_image(const Vec3& d) const noexcept;
   /// Applies one step of strain_rate: the edges and every point of `points`
-  /// (positions, the Verlet reference positions) are stretched about the centre.
-  void deform(double dt, std::span<Vec3> positions, std::span<Vec3> references) noexcept;
+  /// (positions, the Verlet reference positions) are stretched about the centre,
+  /// on up to `threads` threads.
+  void deform(double dt, std::span<Vec3> positions, std::span<Vec3> references, int threads = 1) noexcept;
 };
 
 /// Branch vector and affine velocity of the open (non-periodic) space: the
