@@ -8,7 +8,7 @@
 // compression-positive linear law, whose no-tension spring it reuses as is).
 // Stored shear forces and moments are those acting on the first body.
 #include "dfc/dem/contact_model.hpp"
-#include "dfc/dem/linear_law.hpp"
+#include "dfc/dem/contact_plane_rotation.hpp"
 
 namespace dfc::dem {
 

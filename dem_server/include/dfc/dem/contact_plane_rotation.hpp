@@ -1,8 +1,9 @@
 #pragma once
 // Stored in-plane vectors (shear forces, bending moments, shear or bending
 // displacements) carried into the current contact plane, every step, before a
-// law adds this step's increments (reference/dem-physics.md §2.3; the PFC and
-// LAMMPS gran/hooke/history convention).
+// law adds this step's increments (reference/dem-physics.md §2.3; PFC's
+// convention: project, then restore the magnitude; LAMMPS gran/hooke/history
+// projects without restoring it).
 #include <cmath>
 #include <cstddef>
 

@@ -43,6 +43,7 @@
 #include "dfc/dem/bond_increments.hpp"
 #include "dfc/dem/bond_state.hpp"
 #include "dfc/dem/damage_envelope.hpp"
+#include "dfc/dem/linear_law.hpp"
 
 namespace dfc::dem {
 

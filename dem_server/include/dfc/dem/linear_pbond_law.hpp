@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "dfc/dem/bond_state.hpp"
+#include "dfc/dem/linear_law.hpp"
 #include "dfc/dem/parallel_bond_forces.hpp"
 
 namespace dfc::dem {
