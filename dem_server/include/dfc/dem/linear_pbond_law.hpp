@@ -13,7 +13,10 @@
 //   first (the order is [unconfirmed] in the reference; with brittle failure
 //   it only decides the label when both limits are passed in one step).
 //
-// History (12): state, BondLoad (8), linear shear force (3).
+// History (15): state, BondLoad (8), linear shear force (3), the previous
+// step's normal (3). The stored shear force and bending moment of the bond and
+// the linear shear force turn with the contact frame from the previous normal
+// to the current one (contact_plane_rotation.hpp ContactFrameRotation; §8 item 3).
 #include <array>
 #include <cmath>
 #include <span>
@@ -30,7 +33,8 @@ struct LinearPbondLaw {
   static constexpr std::string_view keyword = "linear_pbond";
   static constexpr std::size_t load_offset = 1;
   static constexpr std::size_t linear_offset = load_offset + BondLoad::history_size;
-  static constexpr std::size_t history_size = linear_offset + LinearLaw::history_size;
+  static constexpr std::size_t previous_normal_offset = linear_offset + LinearLaw::history_size;
+  static constexpr std::size_t history_size = previous_normal_offset + 3;
   static constexpr bool has_couple = true;
   static constexpr bool acts_across_gap = true;  // a bond holds across a gap
   static constexpr bool bonded = true;
@@ -62,20 +66,38 @@ struct LinearPbondLaw {
   /// returns zero and resets the linear part's history).
   [[nodiscard]] static bool idle_across_gap(const double* history) noexcept { return bond_state(history) != BondState::intact; }
 
+  /// A contact that carries nothing: no linear part, and no previous normal
+  /// (no stored vector left to turn).
   void separate(double* history) const noexcept {
     for (std::size_t c = linear_offset; c < history_size; ++c) history[c] = 0.0;
   }
 
   /// Pair constants (contact_model.hpp HasPairConstants), in this order.
-  enum Constant : std::size_t { kn_linear, ks_linear, dashpot_linear, kn_bond, ks_bond, moment_per_radius, constants_size_ };
+  enum Constant : std::size_t {
+    kn_linear,
+    ks_linear,
+    dashpot_linear,
+    bond_stiffness,  // BondStiffness, 4 doubles
+    moment_per_radius = bond_stiffness + 4,
+    tension_limit,   // σ̄_c A
+    cohesion_force,  // c̄ A
+    constants_size_
+  };
   static constexpr std::size_t constants_size = constants_size_;
   void pair_constants(const ContactKinematics& k, double* c) const noexcept {
     c[kn_linear] = deformability_kn(k, emod);
     c[ks_linear] = c[kn_linear] / kratio;
     linear_part(c).pair_constants(k, c + dashpot_linear);
-    c[kn_bond] = deformability_bond_kn(k, bond_emod);
-    c[ks_bond] = c[kn_bond] / bond_kratio;
-    c[moment_per_radius] = moment_factor / bond_section(k, radius_multiplier).radius;
+    const double kn_bond = deformability_bond_kn(k, bond_emod);
+    const BondSection s = bond_section(k, radius_multiplier);
+    const BondStiffness stiffness = BondStiffness::of(s, kn_bond, kn_bond / bond_kratio);
+    c[bond_stiffness] = stiffness.normal;
+    c[bond_stiffness + 1] = stiffness.shear;
+    c[bond_stiffness + 2] = stiffness.twist;
+    c[bond_stiffness + 3] = stiffness.bend;
+    c[moment_per_radius] = moment_factor / s.radius;
+    c[tension_limit] = tensile_strength * s.area;
+    c[cohesion_force] = cohesion * s.area;
   }
 
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
@@ -90,7 +112,8 @@ struct LinearPbondLaw {
   }
 
   /// The bond's shear force and bending moment and the linear part's shear
-  /// force turn with the contact plane (RotatesInPlaneHistory).
+  /// force turn with the contact plane (RotatesInPlaneHistory), all by one
+  /// rotation of the contact frame from the normal stored here.
   static constexpr std::array<std::size_t, 3> in_plane_history{load_offset + BondLoad::shear_offset, load_offset + BondLoad::bend_offset,
                                                                linear_offset};
 
@@ -101,10 +124,11 @@ struct LinearPbondLaw {
     ContactForce out{};
     BondState state = bond_state(history);
     if (state == BondState::intact) {
-      const BondSection s = bond_section(k, radius_multiplier);
       BondLoad load = BondLoad::load_in_current_plane(history + load_offset);
-      load.add_elastic(bond_increments(k), s, c[kn_bond], c[ks_bond]);
-      if (!surely_below_limits(load, s, c[moment_per_radius], tensile_strength, cohesion, tan_friction_angle)) {
+      const BondStiffness stiffness{c[bond_stiffness], c[bond_stiffness + 1], c[bond_stiffness + 2], c[bond_stiffness + 3]};
+      load.add_elastic(bond_increments(k), stiffness);
+      if (!surely_below_limits(load, c[moment_per_radius], c[tension_limit], c[cohesion_force], tan_friction_angle)) {
+        const BondSection s = bond_section(k, radius_multiplier);
         const PeakStresses peak = peak_stresses(load, s, moment_factor);
         const double strength = shear_strength(load.normal / s.area, cohesion, tan_friction_angle, tensile_strength);
         if (peak.tension >= tensile_strength) state = BondState::broken_tension;
@@ -120,7 +144,12 @@ struct LinearPbondLaw {
     }
     double* shear = history + linear_offset;
     if (k.overlap <= 0.0) {
-      separate(history);
+      if (state == BondState::intact) {
+        // Surfaces apart, bond holding: only the linear part lets go; the bond's vectors keep turning.
+        for (std::size_t column = 0; column < LinearLaw::history_size; ++column) shear[column] = 0.0;
+      } else {
+        separate(history);
+      }
       return out;
     }
     out.on_first += linear_part(c).evaluate_in_plane(k, c + dashpot_linear, shear).on_first;

@@ -10,6 +10,20 @@
 
 namespace dfc::dem {
 
+/// The bond disc's stiffnesses against each relative motion (reference §2.3):
+/// k̄_n A, k̄_s A, k̄_s J, k̄_n I.
+struct BondStiffness {
+  double normal = 0.0;  ///< N/m
+  double shear = 0.0;   ///< N/m
+  double twist = 0.0;   ///< N m/rad
+  double bend = 0.0;    ///< N m/rad
+
+  /// From the bond's spring stiffnesses per unit area k̄_n, k̄_s [Pa/m] and its section.
+  [[nodiscard]] static BondStiffness of(const BondSection& s, double kn, double ks) noexcept {
+    return {kn * s.area, ks * s.area, ks * s.polar, kn * s.inertia};
+  }
+};
+
 /// Bond force and moment on the first body; N > 0 in tension.
 /// History layout (8 doubles from `h`): N, F_s (3), M_t, M_b (3).
 struct BondLoad {
@@ -43,11 +57,11 @@ struct BondLoad {
   /// Reference §2.3: F̄_n += k̄_n A Δδ_n, F̄_s += k̄_s A Δδ_s, M̄_t += k̄_s J Δθ_t,
   /// M̄_b += k̄_n I Δθ_b (signs for tension-positive N and loads on the first
   /// body: opening stretches the springs, the second body's motion drags the first).
-  void add_elastic(const BondIncrements& d, const BondSection& s, double kn, double ks) noexcept {
-    normal += kn * s.area * d.normal;
-    shear += (ks * s.area) * d.shear;
-    twist += ks * s.polar * d.twist;
-    bend += (kn * s.inertia) * d.bend;
+  void add_elastic(const BondIncrements& d, const BondStiffness& k) noexcept {
+    normal += k.normal * d.normal;
+    shear += k.shear * d.shear;
+    twist += k.twist * d.twist;
+    bend += k.bend * d.bend;
   }
 
   /// Force on the first body: tension pulls it towards the second (+n).
@@ -82,13 +96,14 @@ struct PeakStresses {
 /// Most intact bonds are far from failure, so the exact test (peak_stresses,
 /// shear_strength) runs only for the others (measured: +3 % bonded throughput
 /// on the peer benchmark, where no bond is near failure).
-/// per_radius = β̄ / R̄ (a pair constant of the law: no division per step).
-[[nodiscard]] inline bool surely_below_limits(const BondLoad& f, const BondSection& s, double per_radius, double tensile_strength, double cohesion,
+/// per_radius = β̄ / R̄, tension_limit = σ̄_c A, cohesion_force = c̄ A (pair
+/// constants of the law: no division per step).
+[[nodiscard]] inline bool surely_below_limits(const BondLoad& f, double per_radius, double tension_limit, double cohesion_force,
                                               double tan_friction_angle) noexcept {
   const double bend = std::abs(f.bend.x) + std::abs(f.bend.y) + std::abs(f.bend.z);
-  if (f.normal + 4.0 * per_radius * bend >= tensile_strength * s.area) return false;
+  if (f.normal + 4.0 * per_radius * bend >= tension_limit) return false;
   const double shear = std::abs(f.shear.x) + std::abs(f.shear.y) + std::abs(f.shear.z) + 2.0 * per_radius * std::abs(f.twist);
-  return shear < std::max(0.0, cohesion * s.area - std::min(f.normal, tensile_strength * s.area) * tan_friction_angle);
+  return shear < std::max(0.0, cohesion_force - std::min(f.normal, tension_limit) * tan_friction_angle);
 }
 
 }  // namespace dfc::dem

@@ -97,7 +97,7 @@ inline ContactForce SoftBondLaw::evaluate(const ContactKinematics& k, double* hi
     BondLoad load = BondLoad::load(history + load_offset, k.normal);
     const BondIncrements d = bond_increments(k);
     const double bend_before = norm(load.bend);
-    load.add_elastic(d, s, kn, kn / kratio);
+    load.add_elastic(d, BondStiffness::of(s, kn, kn / kratio));
     const double elongation =
         history[elongation_column] + d.normal + moment_factor * s.radius * (norm(load.bend) - bend_before) / (kn * s.inertia);
     const double max_elongation = std::max(history[max_elongation_column], elongation);

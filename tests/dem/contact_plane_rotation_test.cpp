@@ -1,0 +1,122 @@
+// Stored in-plane vectors turning with the contact plane
+// (contact_plane_rotation.hpp): the frame rotation used by laws that keep the
+// previous normal (linear_pbond), checked against Rodrigues' formula written
+// out independently, and the invariants any rotation of the contact frame
+// must keep (length, the new plane, the direction along the rotation axis).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "dfc/dem/contact_plane_rotation.hpp"
+#include "dfc/dem/linear_pbond_law.hpp"
+
+namespace dfc::dem {
+namespace {
+
+/// Two stored vectors and the previous normal, as a law that declares them.
+struct FrameHistoryLaw {
+  static constexpr std::array<std::size_t, 2> in_plane_history{0, 3};
+  static constexpr std::size_t previous_normal_offset = 6;
+};
+
+/// Rodrigues' rotation of v about the unit axis k by angle theta:
+/// v cos θ + (k × v) sin θ + k (k·v)(1 − cos θ).
+Vec3 rodrigues(const Vec3& v, const Vec3& k, double theta) {
+  return std::cos(theta) * v + std::sin(theta) * cross(k, v) + (dot(k, v) * (1.0 - std::cos(theta))) * k;
+}
+
+Vec3 unit(const Vec3& v) { return (1.0 / norm(v)) * v; }
+
+// Round-off bound: each formula is a handful of operations on O(1) numbers,
+// so 1e-14 (about 50 ulp) is far below any error of the formula itself (the
+// first-order projection misses by ~θ², 0.25 at the 60° used here).
+constexpr double round_off = 1e-14;
+
+TEST(ContactFrameRotation, IsRodriguesRotationFromThePreviousToTheCurrentNormal) {
+  const Vec3 n0 = unit({1.0, 0.2, -0.3});
+  // n1: n0 turned by 60° about an axis perpendicular to it.
+  const Vec3 axis = unit(cross(n0, Vec3{0.1, 1.0, 0.4}));
+  const double theta = std::numbers::pi / 3.0;
+  const Vec3 n1 = rodrigues(n0, axis, theta);
+  // Two vectors in the old plane: one across the axis, one mixed.
+  const Vec3 a = 3.0 * cross(axis, n0);
+  const Vec3 b = 0.5 * axis + 2.0 * cross(axis, n0);
+  double history[9] = {a.x, a.y, a.z, b.x, b.y, b.z, n0.x, n0.y, n0.z};
+  rotate_in_plane_history<FrameHistoryLaw>(history, n1);
+  const Vec3 ra = load_vec3(history);
+  const Vec3 rb = load_vec3(history + 3);
+  EXPECT_LT(norm(ra - rodrigues(a, axis, theta)), round_off * norm(a));
+  EXPECT_LT(norm(rb - rodrigues(b, axis, theta)), round_off * norm(b));
+  // The new normal is stored for the next step.
+  EXPECT_EQ(load_vec3(history + 6).x, n1.x);
+  EXPECT_EQ(load_vec3(history + 6).y, n1.y);
+  EXPECT_EQ(load_vec3(history + 6).z, n1.z);
+  // Project-and-rescale differs from the rotation at this angle (the test can tell them apart).
+  EXPECT_GT(norm(rotate_into_contact_plane(b, n1) - rodrigues(b, axis, theta)), 0.1 * norm(b));
+}
+
+TEST(ContactFrameRotation, KeepsLengthPutsVectorsInTheNewPlaneAndAgreesWithProjectionToFirstOrder) {
+  const Vec3 n0 = unit({-0.3, 0.9, 0.1});
+  const Vec3 v = 2.5 * unit(cross(n0, Vec3{1.0, 0.0, 0.0})) + 0.7 * unit(cross(n0, Vec3{0.0, 0.0, 1.0}));
+  for (const double theta : {1e-6, 1e-3, 0.1, 1.0, 2.5}) {
+    const Vec3 axis = unit(cross(n0, Vec3{0.3, 0.2, 1.0}));
+    const Vec3 n1 = rodrigues(n0, axis, theta);
+    const Vec3 turned = ContactFrameRotation::between(n0, n1).apply(v);
+    EXPECT_NEAR(norm(turned), norm(v), round_off * norm(v)) << theta;
+    EXPECT_LT(std::abs(dot(turned, n1)), round_off * norm(v)) << theta;
+    // Both conventions turn a vector with the plane; they differ at second order only.
+    const double difference = norm(turned - rotate_into_contact_plane(v, n1));
+    EXPECT_LT(difference, (theta * theta + round_off) * norm(v)) << theta;
+  }
+}
+
+TEST(ContactFrameRotation, FirstContactProjectsAndOppositeNormalsDoNotDivideByZero) {
+  const Vec3 n1{0.0, 0.0, 1.0};
+  const Vec3 v{1.0, 2.0, 3.0};
+  // No previous normal stored: the plain projection onto the new plane.
+  const Vec3 fresh = ContactFrameRotation::between(Vec3{}, n1).apply(v);
+  EXPECT_EQ(fresh.x, 1.0);
+  EXPECT_EQ(fresh.y, 2.0);
+  EXPECT_EQ(fresh.z, 0.0);
+  const Vec3 flipped = ContactFrameRotation::between(-1.0 * n1, n1).apply(v);
+  EXPECT_TRUE(std::isfinite(flipped.x) && std::isfinite(flipped.y) && std::isfinite(flipped.z));
+  EXPECT_EQ(flipped.z, 0.0);
+}
+
+// A bonded pair carried round by a rigid rotation of both spheres: no relative
+// motion at the contact, so the bond's loads must turn with the pair and keep
+// their size. The normal goes a quarter turn about z in 1000 steps; the shear
+// force starts along y (in the turning plane) and must end along -x; the
+// bending moment along z (the axis) must not move. Tolerance: 1000 steps of
+// round-off on O(1) numbers, 1e-12.
+TEST(ContactFrameRotation, ParallelBondLoadsTurnWithARigidlyRotatingPair) {
+  const LinearPbondLaw law{.emod = 1e8, .bond_emod = 1e8, .tensile_strength = 1e12, .cohesion = 1e12};
+  double history[LinearPbondLaw::history_size] = {};
+  set_bond_state(history, BondState::intact);
+  double* load = history + LinearPbondLaw::load_offset;
+  load[BondLoad::shear_offset + 1] = 1.0;  // F_s = (0, 1, 0) N
+  load[BondLoad::bend_offset + 2] = 0.5;   // M_b = (0, 0, 0.5) N m
+  ContactKinematics k;
+  k.radius_first = k.radius_second = 1e-3;
+  k.effective_mass = 1e-6;
+  k.dt = 1e-6;
+  k.overlap = -1e-6;  // a gap: the bond alone
+  constexpr int steps = 1000;
+  for (int s = 0; s <= steps; ++s) {
+    const double angle = 0.5 * std::numbers::pi * s / steps;
+    k.normal = {std::cos(angle), std::sin(angle), 0.0};
+    const ContactForce f = law.evaluate(k, history);
+    EXPECT_EQ(bond_state(history), BondState::intact);
+    if (s == steps) {
+      EXPECT_NEAR(f.on_first.x, -1.0, 1e-12);
+      EXPECT_NEAR(f.on_first.y, 0.0, 1e-12);
+      EXPECT_NEAR(f.couple_on_first.z, 0.5, 1e-12);
+      EXPECT_NEAR(norm(f.couple_on_first), 0.5, 1e-12);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dfc::dem
