@@ -63,7 +63,7 @@ struct LinearPbondLaw {
   }
 
   /// SkipsIdleGaps: without an intact bond a gap carries nothing (evaluate
-  /// returns zero and resets the linear part's history).
+  /// returns zero and calls separate).
   [[nodiscard]] static bool idle_across_gap(const double* history) noexcept { return bond_state(history) != BondState::intact; }
 
   /// A contact that carries nothing: no linear part, and no previous normal
