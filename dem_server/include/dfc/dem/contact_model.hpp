@@ -98,9 +98,12 @@ concept HasPairConstants = ContactLawKernel<Law> && requires(const Law law, cons
 /// `evaluate_in_plane(k, constants, history)` is `evaluate(k, constants,
 /// history)` for a history already carried into k's plane. The pair loop
 /// rotates a batch of contacts before it evaluates them: each rotation's
-/// division and square root are then independent of the next contact's, and
-/// the processor overlaps them instead of waiting on each (the operations
-/// are the same, so are the results).
+/// division (and square roots) are then independent of the next contact's,
+/// and the processor overlaps them instead of waiting on each (the operations
+/// are the same, so are the results). A law may also declare
+/// Law::previous_normal_offset (3 history doubles it keeps for this): its
+/// vectors then turn with the contact frame from that normal, all by one
+/// rotation (ContactFrameRotation), and the new normal is stored.
 template <class Law>
 concept RotatesInPlaneHistory = HasPairConstants<Law> && requires(const Law law, const ContactKinematics& k, const double* constants, double* history) {
   { Law::in_plane_history.size() } -> std::convertible_to<std::size_t>;
