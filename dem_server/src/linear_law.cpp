@@ -15,6 +15,9 @@ std::vector<ParameterSpec> LinearLaw::parameter_specs() {
       {"friction", "-", 0.5, "Coulomb friction coefficient mu: |F_s| <= mu F_n", Bounds{0.0, inf, false}, 0.0},
       {"damping_ratio_normal", "-", 0.0, "normal viscous damping as a fraction beta_n of critical, c_n = 2 beta_n sqrt(m_eff k_n)",
        Bounds{0.0, 1.0, false}, 0.0},
+      {"damping_ratio_shear", "-", 0.0,
+       "shear viscous damping as a fraction beta_s of critical, c_s = 2 beta_s sqrt(m_eff k_s), cut while the contact slides",
+       Bounds{0.0, 1.0, false}, 0.0},
   };
 }
 
@@ -23,7 +26,7 @@ std::vector<HistoryColumn> LinearLaw::history_columns() {
 }
 
 LinearLaw LinearLaw::from_parameters(std::span<const double> values) {
-  return {.kn = values[0], .ks = values[1], .friction = values[2], .damping_ratio_normal = values[3]};
+  return {.kn = values[0], .ks = values[1], .friction = values[2], .damping_ratio_normal = values[3], .damping_ratio_shear = values[4]};
 }
 
 }  // namespace dfc::dem

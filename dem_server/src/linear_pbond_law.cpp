@@ -26,6 +26,8 @@ std::vector<ParameterSpec> LinearPbondLaw::parameter_specs() {
       {"pb_coh_pa", "Pa", std::nullopt, "bond cohesion cbar", positive, 0.0},
       {"pb_fa_deg", "deg", 0.0, "bond friction angle phibar: tau_c = cbar - sigma tan(phibar)", Bounds{0.0, 90.0, false}, 0.0},
       {"bond_gap_m", "m", 0.0, "pairs whose surface gap is at most this at start are bonded", non_negative, 1.0},
+      {"damping_ratio_shear", "-", 0.0, "shear viscous damping of the linear part, fraction of critical, cut while it slides", Bounds{0.0, 1.0},
+       0.0},
   };
 }
 
@@ -38,7 +40,7 @@ std::vector<HistoryColumn> LinearPbondLaw::history_columns() {
 LinearPbondLaw LinearPbondLaw::from_parameters(std::span<const double> v) {
   return {.emod = v[0], .kratio = v[1], .friction = v[2], .damping_ratio_normal = v[3], .bond_emod = v[4], .bond_kratio = v[5],
           .radius_multiplier = v[6], .moment_factor = v[7], .tensile_strength = v[8], .cohesion = v[9],
-          .tan_friction_angle = std::tan(v[10] * std::numbers::pi / 180.0), .bond_gap = v[11]};
+          .tan_friction_angle = std::tan(v[10] * std::numbers::pi / 180.0), .bond_gap = v[11], .damping_ratio_shear = v[12]};
 }
 
 }  // namespace dfc::dem

@@ -160,20 +160,19 @@ PeerPacking read_lammps_data(const std::string& path) {
 
 /// The peers' contact; "linear_pbond": the same contact with an unbreakable bond on every pair within 10 um of touching.
 nlohmann::json peer_law(const std::string& law) {
-  if (law == "linear") return {{"kn_n_m", 1e5}, {"ks_n_m", 1e5 * 2.0 / 7.0}, {"friction", 0.5}, {"damping_ratio_normal", 0.215}};
+  if (law == "linear")
+    return {{"kn_n_m", 1e5}, {"ks_n_m", 1e5 * 2.0 / 7.0}, {"friction", 0.5}, {"damping_ratio_normal", 0.215}, {"damping_ratio_shear", 0.2015}};
   const double emod = 1e5 / (std::numbers::pi * 0.55e-3 / 2.0);
   return {{"law", "linear_pbond"}, {"emod_pa", emod},  {"kratio", 3.5},       {"friction", 0.5},      {"damping_ratio_normal", 0.215},
-          {"pb_emod_pa", emod},    {"pb_kratio", 3.5}, {"pb_ten_pa", 1e15}, {"pb_coh_pa", 1e15}, {"bond_gap_m", 1e-5}};
+          {"pb_emod_pa", emod},    {"pb_kratio", 3.5}, {"pb_ten_pa", 1e15}, {"pb_coh_pa", 1e15}, {"bond_gap_m", 1e-5}, {"damping_ratio_shear", 0.2015}};
 }
 
 nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::string& law_name) {
   const nlohmann::json law = peer_law(law_name);
-  // Periodic in x and y like the peers (docs/dem_periodic.md), with the floor
-  // at the lowest sphere bottom: the model builder removes spheres that start
-  // overlapping a wall, and the settled packing presses its bottom layer ~1 um
-  // into the peers' floor at z = 0.
-  double floor_z = 0.0;
-  for (const auto& s : pack.spheres) floor_z = std::min(floor_z, s[2].get<double>() - s[3].get<double>());
+  // Periodic in x and y like the peers (docs/dem_periodic.md), with their
+  // floor at z = 0: the settled packing rests its bottom layer up to 31 nm into
+  // it (a contact, not a cut: model_builder.cpp keeps such spheres).
+  const double floor_z = 0.0;
   const double xc = 0.5 * (pack.box[0][0] + pack.box[0][1]), yc = 0.5 * (pack.box[1][0] + pack.box[1][1]);
   const double half = (pack.box[0][1] - pack.box[0][0]) + (pack.box[1][1] - pack.box[1][0]);  // covers the cell and its images
   const nlohmann::json walls = nlohmann::json::array({{{"type", "plane"}, {"name", "floor"}, {"point_m", {xc, yc, floor_z}}, {"normal", {0, 0, 1}}, {"half_size_m", half}}});
@@ -210,6 +209,14 @@ std::uint64_t state_digest(const Simulation& sim) {
   return hash;
 }
 
+/// Sum of m v^2 / 2: what the peers' README reports (LAMMPS's thermo `ke`,
+/// LIGGGHTS's `ke` column), unlike Measurements::kinetic_energy, which adds the spins.
+double translational_kinetic_energy(const ParticleStore& p) {
+  double energy = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) energy += 0.5 * p.mass[i] * norm2(p.velocity[i]);
+  return energy;
+}
+
 /// The peer benchmark protocol on a data file: warm-up untimed, then timed.
 void run_peer_benchmark(const Options& o) {
   const PeerPacking pack = read_lammps_data(o.data);
@@ -225,7 +232,8 @@ void run_peer_benchmark(const Options& o) {
     const Measurements m = measure(sim);
     std::cout << "threads " << sim.threads() << ": " << double(sim.particles().size()) * o.steps / seconds << " particle-steps/s ("
               << seconds << " s for " << o.steps << " steps of " << sim.particles().size() << " particles, " << sim.rebuild_count() - rebuilds
-              << " rebuilds, coordination " << m.coordination_number << ", kinetic energy " << m.kinetic_energy << " J";
+              << " rebuilds, " << sim.pair_contacts().size() << " pair candidates, coordination " << m.coordination_number << ", kinetic energy "
+              << m.kinetic_energy << " J (translational " << translational_kinetic_energy(sim.particles()) << " J)";
     if (sim.settings().particle_law.bonded()) std::cout << ", bonds intact " << sim.bond_counts().intact;
     if (o.digest) std::cout << ", state digest " << std::hex << state_digest(sim) << std::dec;
     std::cout << ")\n";

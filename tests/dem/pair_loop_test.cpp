@@ -180,11 +180,12 @@ void bonded_rows(std::size_t k, double* row) {
 /// stay intact and some break, in tension and in shear (asserted below).
 LinearPbondLaw weak_bonds() {
   return {.emod = 1e8, .kratio = 2.0, .friction = 0.5, .damping_ratio_normal = 0.1, .bond_emod = 1e8, .bond_kratio = 2.0,
-          .radius_multiplier = 1.0, .moment_factor = 1.0, .tensile_strength = 2e3, .cohesion = 1e3, .tan_friction_angle = 0.5};
+          .radius_multiplier = 1.0, .moment_factor = 1.0, .tensile_strength = 2e3, .cohesion = 1e3, .tan_friction_angle = 0.5,
+          .damping_ratio_shear = 0.1};
 }
 
 TEST(PairLoop, LinearContactsAreWhatTheLawGivesEachContactAlone) {
-  const LinearLaw law{.kn = 1e5, .ks = 2e4, .friction = 0.5, .damping_ratio_normal = 0.2};
+  const LinearLaw law{.kn = 1e5, .ks = 2e4, .friction = 0.5, .damping_ratio_normal = 0.2, .damping_ratio_shear = 0.15};
   expect_loop_equals_law_alone(law, [](std::size_t, double*) {});
 }
 

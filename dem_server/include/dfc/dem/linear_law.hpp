@@ -6,9 +6,19 @@
 //            + dashpot F_d = -2 beta_n sqrt(m_eff k_n) v_n (PFC dp_nratio, full mode)
 //   shear:   F_s <- rotate(F_s) + k_s * dU_s,  dU_s = v_t dt   (incremental)
 //            |F_s| <= mu * F_n                                   (Coulomb slip)
+//            + dashpot 2 beta_s sqrt(m_eff k_s) v_t while not sliding (PFC dp_sratio)
 //
-// History: the shear force on the first body, 3 components in global axes,
-// rotated with the contact plane every step.
+// Dashpots: c = 2 beta sqrt(m k) (reference/dem-physics.md §2.3, "Dashpots").
+// The normal one acts always (PFC "full" normal mode). The shear one is cut
+// while the contact slides (PFC dp_mode 2, "slip-cut" shear), so a sliding
+// contact carries mu F_n and no more, as in LAMMPS's gran/hooke/history and
+// LIGGGHTS's hooke/stiffness (they cap spring + dashpot together). PFC's
+// default full shear mode would add c_s v_t on top of mu F_n: measured on the
+// peer benchmark (docs/dem_benchmarks.md), that dissipates visibly more than
+// the peers do, where the slip-cut form matches them.
+//
+// History: the shear spring force on the first body, 3 components in global
+// axes, rotated with the contact plane every step (the dashpot has no memory).
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -39,6 +49,7 @@ struct LinearLaw {
   double ks = 0.0;                    ///< N/m
   double friction = 0.0;              ///< -
   double damping_ratio_normal = 0.0;  ///< - (fraction of critical)
+  double damping_ratio_shear = 0.0;   ///< - (fraction of critical)
 
   /// Parameter table in the order `from_parameters` expects.
   [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
@@ -49,11 +60,13 @@ struct LinearLaw {
 
   void separate(double* history) const noexcept { history[0] = history[1] = history[2] = 0.0; }
 
-  /// Pair constant (contact_model.hpp HasPairConstants): [0] = -c_n, the
-  /// dashpot coefficient c_n = 2 beta_n sqrt(m_eff k_n) (reference/dem-physics.md §2.3) negated.
-  static constexpr std::size_t constants_size = 1;
+  /// Pair constants (contact_model.hpp HasPairConstants): [0] = -c_n, the
+  /// normal dashpot coefficient c_n = 2 beta_n sqrt(m_eff k_n) negated, and
+  /// [1] = c_s = 2 beta_s sqrt(m_eff k_s) (reference/dem-physics.md §2.3), in N s/m.
+  static constexpr std::size_t constants_size = 2;
   void pair_constants(const ContactKinematics& k, double* c) const noexcept {
     c[0] = damping_ratio_normal > 0.0 ? -2.0 * damping_ratio_normal * std::sqrt(k.effective_mass * kn) : 0.0;
+    c[1] = damping_ratio_shear > 0.0 ? 2.0 * damping_ratio_shear * std::sqrt(k.effective_mass * ks) : 0.0;
   }
 
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
@@ -80,13 +93,19 @@ struct LinearLaw {
 
     Vec3 shear = load_vec3(history);
     // The second body's contact point moving by v_t dt drags the first body along v_t.
-    shear += (ks * k.dt) * (k.relative_velocity - vn * n);
-    shear = coulomb_limit(shear, friction * fn_spring);
+    const Vec3 tangential_velocity = k.relative_velocity - vn * n;
+    shear += (ks * k.dt) * tangential_velocity;
+    const double limit = friction * fn_spring;
+    const bool sliding = norm2(shear) > limit * limit;
+    shear = coulomb_limit(shear, limit);
     history[0] = shear.x;
     history[1] = shear.y;
     history[2] = shear.z;
     // The normal force pushes the first body away from the second: along -n.
-    return {shear - (fn_spring + fn_dashpot) * n, {}};
+    Vec3 on_first = shear - (fn_spring + fn_dashpot) * n;
+    // The shear dashpot drags the first body along v_t too, unless it slides (slip-cut).
+    if (damping_ratio_shear > 0.0 && !sliding) on_first += constants[1] * tangential_velocity;
+    return {on_first, {}};
   }
 };
 

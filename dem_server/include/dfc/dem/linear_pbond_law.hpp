@@ -51,6 +51,7 @@ struct LinearPbondLaw {
   double cohesion = 0.0;              ///< Pa, c̄
   double tan_friction_angle = 0.0;    ///< -, tan φ̄
   double bond_gap = 0.0;              ///< m, pairs with a surface gap <= this are bonded at start
+  double damping_ratio_shear = 0.0;   ///< - (linear part)
 
   [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
   [[nodiscard]] static std::vector<HistoryColumn> history_columns();
@@ -76,8 +77,8 @@ struct LinearPbondLaw {
   enum Constant : std::size_t {
     kn_linear,
     ks_linear,
-    dashpot_linear,
-    bond_stiffness,  // BondStiffness, 4 doubles
+    dashpot_linear,  // LinearLaw's pair constants
+    bond_stiffness = dashpot_linear + LinearLaw::constants_size,  // BondStiffness, 4 doubles
     moment_per_radius = bond_stiffness + 4,
     tension_limit,   // σ̄_c A
     cohesion_force,  // c̄ A
@@ -159,7 +160,11 @@ struct LinearPbondLaw {
  private:
   /// The linear frictional contact of this pair (its stiffnesses are pair constants).
   [[nodiscard]] LinearLaw linear_part(const double* c) const noexcept {
-    return {.kn = c[kn_linear], .ks = c[ks_linear], .friction = friction, .damping_ratio_normal = damping_ratio_normal};
+    return {.kn = c[kn_linear],
+            .ks = c[ks_linear],
+            .friction = friction,
+            .damping_ratio_normal = damping_ratio_normal,
+            .damping_ratio_shear = damping_ratio_shear};
   }
 };
 
