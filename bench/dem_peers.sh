@@ -6,8 +6,11 @@
 #   bench/dem_peers.sh [BUILD_DIR]        (default build; builds dem_throughput)
 # Environment: SIZE=12k|50k (12k), WARMUP (1000), STEPS (2000), REPEAT (3 rounds), PEERS_DIR.
 # Installs the Debian packages lammps liggghts openmpi-bin if missing (needs root).
-# Differences of our run from the peers' (docs/dem_benchmarks.md): the normal
-# dashpot as a fraction of critical, no tangential dashpot.
+# Differences of our run from the peers' (docs/dem_benchmarks.md): the dashpots
+# as fractions of critical (beta_n 0.215, beta_s 0.2015: the peers' gamma_n and
+# gamma_t for the mean pair), the shear dashpot cut while a contact slides where
+# the peers cap spring + dashpot. Last, the model cross-check of the peers' README:
+# our translational kinetic energy against LAMMPS's after 600 and 2000 steps.
 # Not part of the default test run.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -88,4 +91,19 @@ for p in 1 2; do
   printf "%-34s %8.3f\n" "  per interacting pair, $p thread(s)" \
     "$(awk -v r="$(ratio "bonded $p" "ours $p")" -v b="$coordination_bonded" -v u="$coordination_unbonded" 'BEGIN{print r * b / u}')"
 done
+# 5. The same model? The peers' README cross-check: the bed's translational
+#    kinetic energy (LAMMPS's thermo `ke`) after 600 and 2000 steps from rest.
+ke_ours() {  # $1 = steps in all
+  "$BUILD/bin/dem_throughput" --data "$DATA" --threads 1 --warmup 300 --steps $(($1 - 300)) --law linear \
+    | sed -nE 's/.*translational ([0-9.eE+-]+) J.*/\1/p'
+}
+ke_lammps() {  # LAMMPS thermo lines "step atoms ke coordination" at 600 and 2000
+  (cd "$PEERS/lammps" && lmp -in bench.in -var data "$DATA" -var nwarm 600 -var nrun 1400 -log "$LOGS/lammps_ke.log" >/dev/null 2>&1) || return 0
+  awk 'NF == 4 && ($1 == 600 || $1 == 2000) && $2 ~ /^[0-9]+$/ {print $1, $3}' "$LOGS/lammps_ke.log" | sort -un
+}
+printf "\n%-34s %12s %12s %8s\n" "translational kinetic energy (J)" ours LAMMPS ratio
+while read -r step lammps; do
+  ours=$(ke_ours "$step")
+  printf "%-34s %12.4g %12.4g %8.3f\n" "  after $step steps" "$ours" "$lammps" "$(awk -v a="$ours" -v b="$lammps" 'BEGIN{print (b > 0 ? a / b : 0)}')"
+done < <(ke_lammps)
 echo "(logs: $LOGS)"
