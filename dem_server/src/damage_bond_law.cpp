@@ -27,6 +27,8 @@ std::vector<ParameterSpec> DamageBondLaw::parameter_specs() {
       {"ucs_m", "m", std::nullopt, "shear softening length u_cs of the damage law", positive, 1.0},
       {"theta_c_rad", "rad", std::nullopt, "bending softening rotation theta_c of the damage law", positive, 0.0},
       {"bond_gap_m", "m", 0.0, "pairs whose surface gap is at most this at start are bonded", non_negative, 1.0},
+      {"damping_ratio_shear", "-", 0.0, "shear viscous damping of the linear contact, fraction of critical, cut while it slides",
+       Bounds{0.0, 1.0}, 0.0},
   };
 }
 
@@ -42,7 +44,7 @@ std::vector<HistoryColumn> DamageBondLaw::history_columns() {
 DamageBondLaw DamageBondLaw::from_parameters(std::span<const double> v) {
   return {.emod = v[0], .kratio = v[1], .friction = v[2], .damping_ratio_normal = v[3], .bond_emod = v[4], .bond_kratio = v[5],
           .radius_multiplier = v[6], .tensile_strength = v[7], .compressive_strength = v[8], .cohesion = v[9], .u_cn = v[10],
-          .u_cs = v[11], .theta_c = v[12], .bond_gap = v[13]};
+          .u_cs = v[11], .theta_c = v[12], .bond_gap = v[13], .damping_ratio_shear = v[14]};
 }
 
 double DamageBondLaw::damage_from(double opening_p, double slip_p, double bend_p) const noexcept {

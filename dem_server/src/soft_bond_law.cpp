@@ -26,6 +26,8 @@ std::vector<ParameterSpec> SoftBondLaw::parameter_specs() {
       {"sb_cut", "-", 0.0, "softening tensile strength factor gamma: broken when the softened strength is gamma sigma_t",
        Bounds{0.0, 1.0}, 0.0},
       {"bond_gap_m", "m", 0.0, "pairs whose surface gap is at most this at start are bonded", non_negative, 1.0},
+      {"damping_ratio_shear", "-", 0.0, "shear viscous damping of the unbonded contact, fraction of critical, cut while it slides",
+       Bounds{0.0, 1.0}, 0.0},
   };
 }
 
@@ -39,7 +41,7 @@ std::vector<HistoryColumn> SoftBondLaw::history_columns() {
 SoftBondLaw SoftBondLaw::from_parameters(std::span<const double> v) {
   return {.emod = v[0], .kratio = v[1], .friction = v[2], .damping_ratio_normal = v[3], .radius_multiplier = v[4], .moment_factor = v[5],
           .tensile_strength = v[6], .cohesion = v[7], .tan_friction_angle = std::tan(v[8] * std::numbers::pi / 180.0),
-          .softening_factor = v[9], .cut_factor = v[10], .bond_gap = v[11]};
+          .softening_factor = v[9], .cut_factor = v[10], .bond_gap = v[11], .damping_ratio_shear = v[12]};
 }
 
 }  // namespace dfc::dem

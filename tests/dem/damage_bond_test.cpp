@@ -11,8 +11,8 @@
 namespace dfc::dem {
 namespace {
 
-DamageBondLaw seed001_law() {  // seed 001 Table 1
-  return DamageBondLaw::from_parameters(std::vector<double>{1.7e9, 5.0, 0.5, 0.0, 1.7e9, 5.0, 1.0, 1e6, 50e6, 2e6, 2e-5, 2e-5, 6e-3, 0.0});
+DamageBondLaw seed001_law() {  // seed 001 Table 1 (no shear dashpot: the last value)
+  return DamageBondLaw::from_parameters(std::vector<double>{1.7e9, 5.0, 0.5, 0.0, 1.7e9, 5.0, 1.0, 1e6, 50e6, 2e6, 2e-5, 2e-5, 6e-3, 0.0, 0.0});
 }
 
 TEST(DamageBond, CombinedCyclicPathStaysInsideTheEnvelopeWithMonotoneDamage) {

@@ -74,6 +74,7 @@ struct DamageBondLaw {
   double u_cs = 0.0;                  ///< m, shear softening length
   double theta_c = 0.0;               ///< rad, bending softening rotation
   double bond_gap = 0.0;              ///< m
+  double damping_ratio_shear = 0.0;   ///< - (linear contact; linear_law.hpp: cut while it slides)
 
   [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
   [[nodiscard]] static std::vector<HistoryColumn> history_columns();
@@ -104,7 +105,8 @@ struct DamageBondLaw {
       return out;
     }
     const double kn = deformability_kn(k, emod);
-    const LinearLaw linear{.kn = kn, .ks = kn / kratio, .friction = friction, .damping_ratio_normal = damping_ratio_normal};
+    const LinearLaw linear{.kn = kn, .ks = kn / kratio, .friction = friction, .damping_ratio_normal = damping_ratio_normal,
+                           .damping_ratio_shear = damping_ratio_shear};
     out.on_first += linear.evaluate(k, history + linear_shear).on_first;
     return out;
   }

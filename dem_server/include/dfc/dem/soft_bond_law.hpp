@@ -58,6 +58,7 @@ struct SoftBondLaw {
   double softening_factor = 0.0;      ///< -, ζ
   double cut_factor = 0.0;            ///< -, γ
   double bond_gap = 0.0;              ///< m
+  double damping_ratio_shear = 0.0;   ///< - (unbonded contact; linear_law.hpp: cut while it slides)
 
   [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
   [[nodiscard]] static std::vector<HistoryColumn> history_columns();
@@ -138,7 +139,8 @@ inline ContactForce SoftBondLaw::evaluate(const ContactKinematics& k, double* hi
     return {};
   }
   const double kc = kn * s.area;
-  const LinearLaw unbonded{.kn = kc, .ks = kc / kratio, .friction = friction, .damping_ratio_normal = damping_ratio_normal};
+  const LinearLaw unbonded{.kn = kc, .ks = kc / kratio, .friction = friction, .damping_ratio_normal = damping_ratio_normal,
+                           .damping_ratio_shear = damping_ratio_shear};
   return {unbonded.evaluate(k, history + linear_offset).on_first, {}};
 }
 
