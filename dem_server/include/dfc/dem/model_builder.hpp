@@ -16,7 +16,7 @@ struct DemModel {
   std::optional<std::size_t> pile_wall;  ///< index of the pile among the walls
   double dt = 0.0;                       ///< s, the chosen step
   double dt_critical = 0.0;              ///< s, including the wall_contact law (the coupling wall comes later)
-  std::size_t removed_particles = 0;     ///< generated spheres dropped because they overlapped a wall or the pile
+  std::size_t removed_particles = 0;     ///< generated spheres dropped because a wall cut them (overlap > 1e-3 R) or they were inside the pile
   std::optional<PreparationReport> preparation;  ///< periodic cell with radius expansion or consolidation
   double max_strain_rate = 0.0;          ///< 1/s, the servo's cap (periodic cell, triaxial walls)
 };
