@@ -98,7 +98,8 @@ ke_ours() {  # $1 = steps in all
     | sed -nE 's/.*translational ([0-9.eE+-]+) J.*/\1/p'
 }
 ke_lammps() {  # LAMMPS thermo lines "step atoms ke coordination" at 600 and 2000
-  (cd "$PEERS/lammps" && lmp -in bench.in -var data "$DATA" -var nwarm 600 -var nrun 1400 -log "$LOGS/lammps_ke.log" >/dev/null 2>&1) || return 0
+  (cd "$PEERS/lammps" && lmp -in bench.in -var data "$DATA" -var nwarm 600 -var nrun 1400 -log "$LOGS/lammps_ke.log" >/dev/null 2>&1) \
+    || { echo "dem_peers.sh: the LAMMPS run for the kinetic-energy check failed (see $LOGS/lammps_ke.log)" >&2; return 0; }
   awk 'NF == 4 && ($1 == 600 || $1 == 2000) && $2 ~ /^[0-9]+$/ {print $1, $3}' "$LOGS/lammps_ke.log" | sort -un
 }
 printf "\n%-34s %12s %12s %8s\n" "translational kinetic energy (J)" ours LAMMPS ratio

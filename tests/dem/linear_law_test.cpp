@@ -22,7 +22,9 @@ ContactKinematics pressed(double overlap, Vec3 relative_velocity = {}, double dt
   return k;
 }
 
-LinearLaw law(double kn, double ks, double mu, double beta = 0.0) { return {.kn = kn, .ks = ks, .friction = mu, .damping_ratio_normal = beta}; }
+LinearLaw law(double kn, double ks, double mu, double beta = 0.0, double beta_shear = 0.0) {
+  return {.kn = kn, .ks = ks, .friction = mu, .damping_ratio_normal = beta, .damping_ratio_shear = beta_shear};
+}
 
 TEST(LinearLaw, NormalForceIsStiffnessTimesOverlapPushingTheFirstBodyAway) {
   double history[3] = {0, 0, 0};
@@ -71,13 +73,9 @@ TEST(LinearLaw, NormalDashpotIsTheGivenFractionOfCritical) {
   EXPECT_NEAR(-f.on_first.z, expected, 1e-14 * expected);
 }
 
-LinearLaw damped_in_shear(double kn, double ks, double mu, double beta_shear) {
-  return {.kn = kn, .ks = ks, .friction = mu, .damping_ratio_normal = 0.0, .damping_ratio_shear = beta_shear};
-}
-
 TEST(LinearLaw, ShearDashpotAddsTheGivenFractionOfCriticalWhileTheContactSticks) {
   const double kn = 1e5, ks = 4e4, beta = 0.3;
-  const LinearLaw l = damped_in_shear(kn, ks, 10.0, beta);  // mu F_n = 10 N: far from sliding
+  const LinearLaw l = law(kn, ks, 10.0, 0.0, beta);  // mu F_n = 10 N: far from sliding
   double h[3] = {0, 0, 0};
   const ContactKinematics k = pressed(1e-5, {0.02, -0.01, 0.5});  // opening along n = z, v_t = (0.02, -0.01, 0)
   const ContactForce f = l.evaluate(k, h);
@@ -94,13 +92,13 @@ TEST(LinearLaw, ShearDashpotAddsTheGivenFractionOfCriticalWhileTheContactSticks)
   EXPECT_NEAR(h[1], spring_y, 1e-15 * -spring_y);
   // Without the dashpot the same step gives the spring alone: the term is the dashpot's.
   double undamped[3] = {0, 0, 0};
-  EXPECT_NEAR(damped_in_shear(kn, ks, 10.0, 0.0).evaluate(k, undamped).on_first.x, spring_x, 1e-15 * spring_x);
+  EXPECT_NEAR(law(kn, ks, 10.0, 0.0, 0.0).evaluate(k, undamped).on_first.x, spring_x, 1e-15 * spring_x);
 }
 
 TEST(LinearLaw, ShearDashpotIsCutWhileTheContactSlidesSoTheTangentialForceStaysAtTheCoulombLimit) {
   // Slip-cut (PFC dp_mode 2, as LAMMPS and LIGGGHTS bound spring + dashpot):
   // a sliding contact carries mu F_n, not mu F_n + c_s |v_t|.
-  const LinearLaw l = damped_in_shear(1e5, 5e4, 0.3, 0.5);
+  const LinearLaw l = law(1e5, 5e4, 0.3, 0.0, 0.5);
   double h[3] = {0, 0, 0};
   const ContactKinematics sliding = pressed(1e-5, {0.01, 0.0, 0.0});  // F_n = 1 N, cap 0.3 N, +0.05 N per step
   ContactForce f{};
@@ -124,7 +122,7 @@ TEST(LinearLaw, ShearDashpotGivesTheLogarithmicDecrementOfADampedOscillator) {
   // steps a period the scheme's error in the decrement is of order
   // (omega dt)^2 ~ 1e-5; 1e-3 relative is safe and fails for a dashpot off by 0.2 %.
   const double ks = 1e4, beta = 0.1, m = 1e-3;
-  const LinearLaw l = damped_in_shear(1e5, ks, 1e3, beta);
+  const LinearLaw l = law(1e5, ks, 1e3, 0.0, beta);
   const double dt = 2.0 * std::numbers::pi / std::sqrt(ks / m) / 2000.0;
   double h[3] = {1e-2, 0.0, 0.0};  // the spring starts loaded: the first body is displaced and released
   double velocity = 0.0;           // of the first body along x; the second body is fixed
