@@ -13,7 +13,7 @@
 // file (atom_style sphere: id type diameter density x y z): kn 1e5 N/m,
 // ks 2/7 kn, mu 0.5, dt 1e-6 s, skin 0.11 mm, no local damping, periodic in x
 // and y, floor at z = 0; read at rest, --warmup steps untimed, then --steps
-// timed. The one difference from the peers (docs/dem_benchmarks.md): both
+// timed. Differences from the peers (docs/dem_benchmarks.md): both
 // dashpots are fractions of critical, beta_n = 0.215 and beta_s = 0.2015, which
 // match the peers' gamma_n = 1.418e5 1/s and gamma_t = gamma_n / 2 for the mean
 // pair (m_eff = 9.2e-7 kg) but not exactly for the others; the shear dashpot is

@@ -31,13 +31,6 @@
 
 namespace dfc::dem {
 
-/// Caps |shear| at `limit` (>= 0) keeping its direction (Coulomb slip).
-[[nodiscard]] inline Vec3 coulomb_limit(const Vec3& shear, double limit) noexcept {
-  const double magnitude2 = norm2(shear);
-  if (magnitude2 <= limit * limit) return shear;
-  return (limit / std::sqrt(magnitude2)) * shear;
-}
-
 struct LinearLaw {
   static constexpr std::string_view keyword = "linear";
   static constexpr std::size_t history_size = 3;
@@ -95,9 +88,12 @@ struct LinearLaw {
     // The second body's contact point moving by v_t dt drags the first body along v_t.
     const Vec3 tangential_velocity = k.relative_velocity - vn * n;
     shear += (ks * k.dt) * tangential_velocity;
+    // Coulomb slip: |F_s| capped at mu F_n, its direction kept. The same test
+    // cuts the shear dashpot below.
     const double limit = friction * fn_spring;
-    const bool sliding = norm2(shear) > limit * limit;
-    shear = coulomb_limit(shear, limit);
+    const double magnitude2 = norm2(shear);
+    const bool sliding = magnitude2 > limit * limit;
+    if (sliding) shear = (limit / std::sqrt(magnitude2)) * shear;
     history[0] = shear.x;
     history[1] = shear.y;
     history[2] = shear.z;
