@@ -1,7 +1,7 @@
 // Stored in-plane vectors turning with the contact plane
 // (contact_plane_rotation.hpp): the frame rotation used by laws that keep the
-// previous normal (linear_pbond), checked against Rodrigues' formula written
-// out independently, and the invariants any rotation of the contact frame
+// previous normal (linear_pbond) and the twirl about the normal, checked
+// against Rodrigues' formula written out independently, and the invariants any rotation of the contact frame
 // must keep (length, the new plane, the direction along the rotation axis).
 #include <gtest/gtest.h>
 
@@ -10,7 +10,6 @@
 #include <numbers>
 
 #include "dfc/dem/contact_plane_rotation.hpp"
-#include "dfc/dem/linear_pbond_law.hpp"
 
 namespace dfc::dem {
 namespace {
@@ -44,7 +43,9 @@ TEST(ContactFrameRotation, IsRodriguesRotationFromThePreviousToTheCurrentNormal)
   const Vec3 a = 3.0 * cross(axis, n0);
   const Vec3 b = 0.5 * axis + 2.0 * cross(axis, n0);
   double history[9] = {a.x, a.y, a.z, b.x, b.y, b.z, n0.x, n0.y, n0.z};
-  rotate_in_plane_history<FrameHistoryLaw>(history, n1);
+  ContactKinematics k;  // no spin: the tilt alone
+  k.normal = n1;
+  rotate_in_plane_history<FrameHistoryLaw>(history, k);
   const Vec3 ra = load_vec3(history);
   const Vec3 rb = load_vec3(history + 3);
   EXPECT_LT(norm(ra - rodrigues(a, axis, theta)), round_off * norm(a));
@@ -72,6 +73,30 @@ TEST(ContactFrameRotation, KeepsLengthPutsVectorsInTheNewPlaneAndAgreesWithProje
   }
 }
 
+// The twirl turns an in-plane vector about the normal by 2 atan(theta/2),
+// theta = mean spin about the normal x dt, checked against Rodrigues' formula
+// (round-off tolerance as above), and with no spin it gives v back bit for bit.
+TEST(ContactTwirl, TurnsAboutTheNormalByTheMeanSpinAndIsTheIdentityWithoutSpin) {
+  const Vec3 n = unit({0.2, -0.5, 0.8});
+  const Vec3 v = 1.5 * unit(cross(n, Vec3{1.0, 0.0, 0.0}));
+  ContactKinematics k;
+  k.normal = n;
+  k.dt = 1e-3;
+  for (const double spin : {-300.0, 1e-3, 2.0, 40.0}) {
+    k.mean_spin_about_normal = spin;
+    const double theta = spin * k.dt;
+    const Vec3 turned = ContactTwirl::of(k).apply(v, n);
+    EXPECT_LT(norm(turned - rodrigues(v, n, 2.0 * std::atan(0.5 * theta))), round_off * norm(v)) << spin;
+    // and within theta³/12 of the exact angle theta
+    EXPECT_LT(norm(turned - rodrigues(v, n, theta)), (std::abs(theta * theta * theta) / 12.0 * 1.01 + round_off) * norm(v)) << spin;
+  }
+  k.mean_spin_about_normal = 0.0;
+  const Vec3 same = ContactTwirl::of(k).apply(v, n);
+  EXPECT_EQ(same.x, v.x);
+  EXPECT_EQ(same.y, v.y);
+  EXPECT_EQ(same.z, v.z);
+}
+
 TEST(ContactFrameRotation, FirstContactProjectsAndOppositeNormalsDoNotDivideByZero) {
   const Vec3 n1{0.0, 0.0, 1.0};
   const Vec3 v{1.0, 2.0, 3.0};
@@ -83,39 +108,6 @@ TEST(ContactFrameRotation, FirstContactProjectsAndOppositeNormalsDoNotDivideByZe
   const Vec3 flipped = ContactFrameRotation::between(-1.0 * n1, n1).apply(v);
   EXPECT_TRUE(std::isfinite(flipped.x) && std::isfinite(flipped.y) && std::isfinite(flipped.z));
   EXPECT_EQ(flipped.z, 0.0);
-}
-
-// A bonded pair carried round by a rigid rotation of both spheres: no relative
-// motion at the contact, so the bond's loads must turn with the pair and keep
-// their size. The normal goes a quarter turn about z in 1000 steps; the shear
-// force starts along y (in the turning plane) and must end along -x; the
-// bending moment along z (the axis) must not move. Tolerance: 1000 steps of
-// round-off on O(1) numbers, 1e-12.
-TEST(ContactFrameRotation, ParallelBondLoadsTurnWithARigidlyRotatingPair) {
-  const LinearPbondLaw law{.emod = 1e8, .bond_emod = 1e8, .tensile_strength = 1e12, .cohesion = 1e12};
-  double history[LinearPbondLaw::history_size] = {};
-  set_bond_state(history, BondState::intact);
-  double* load = history + LinearPbondLaw::load_offset;
-  load[BondLoad::shear_offset + 1] = 1.0;  // F_s = (0, 1, 0) N
-  load[BondLoad::bend_offset + 2] = 0.5;   // M_b = (0, 0, 0.5) N m
-  ContactKinematics k;
-  k.radius_first = k.radius_second = 1e-3;
-  k.effective_mass = 1e-6;
-  k.dt = 1e-6;
-  k.overlap = -1e-6;  // a gap: the bond alone
-  constexpr int steps = 1000;
-  for (int s = 0; s <= steps; ++s) {
-    const double angle = 0.5 * std::numbers::pi * s / steps;
-    k.normal = {std::cos(angle), std::sin(angle), 0.0};
-    const ContactForce f = law.evaluate(k, history);
-    EXPECT_EQ(bond_state(history), BondState::intact);
-    if (s == steps) {
-      EXPECT_NEAR(f.on_first.x, -1.0, 1e-12);
-      EXPECT_NEAR(f.on_first.y, 0.0, 1e-12);
-      EXPECT_NEAR(f.couple_on_first.z, 0.5, 1e-12);
-      EXPECT_NEAR(norm(f.couple_on_first), 0.5, 1e-12);
-    }
-  }
 }
 
 }  // namespace

@@ -102,6 +102,7 @@ AloneResult evaluate_alone(const Law& law, const ParticleStore& p, std::uint32_t
   kin.relative_velocity = vj - vi;
   if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
   kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
+  kin.mean_spin_about_normal = mean_spin_about_normal(p.angular_velocity[i], p.angular_velocity[j], kin.normal);
   kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
   kin.radius_first = p.radius[i];
   kin.radius_second = p.radius[j];

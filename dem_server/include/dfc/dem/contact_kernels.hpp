@@ -195,13 +195,14 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
           kin.relative_velocity = vj - vi;
           if constexpr (Space::periodic) kin.relative_velocity += space.affine_velocity(d);
           kin.relative_angular_velocity = p.angular_velocity[j] - p.angular_velocity[i];
+          kin.mean_spin_about_normal = mean_spin_about_normal(p.angular_velocity[i], p.angular_velocity[j], normal);
           set_pair_bodies(p, i, j, kin);
           kin.dt = dt;
         }
         // 3b. Stored in-plane vectors into the current contact planes.
         if constexpr (RotatesInPlaneHistory<Law>) {
           for (std::size_t a = 0; a < stage_count; ++a)
-            rotate_in_plane_history<Law>(pairs.row(first + block.acting[stage_first + a]), stage.kinematics[a].normal);
+            rotate_in_plane_history<Law>(pairs.row(first + block.acting[stage_first + a]), stage.kinematics[a]);
         }
         // 3c. The law, the outputs and the loads.
         for (std::size_t a = 0; a < stage_count; ++a) {
@@ -282,6 +283,7 @@ bool evaluate_wall_contacts(const Law& law, const ParticleStore& p, const Wall& 
     excessive = excessive || overlap > max_overlap_fraction * ri;
     kin.relative_velocity = wall_velocity - (p.velocity[i] + cross(p.angular_velocity[i], point - xi));
     kin.relative_angular_velocity = -p.angular_velocity[i];
+    kin.mean_spin_about_normal = mean_spin_about_normal(p.angular_velocity[i], Vec3{}, normal);  // walls do not spin
     kin.effective_mass = p.mass[i];
     kin.radius_first = ri;
     kin.radius_second = 0.0;

@@ -26,11 +26,21 @@ struct ContactKinematics {
   double overlap = 0.0;            ///< m; r1 + r2 - d (wall: r1 - d); > 0 in contact, <= 0 a gap
   Vec3 relative_velocity;          ///< m/s, velocity of the second body's material point at the contact minus the first's
   Vec3 relative_angular_velocity;  ///< rad/s, omega_2 - omega_1 (bonded laws: bending and twisting increments)
+  /// rad/s, (omega_1 + omega_2)/2 · normal: the pair's common spin about the
+  /// normal, which turns the contact plane about itself (the "twirl" of the
+  /// stored in-plane vectors, contact_plane_rotation.hpp ContactTwirl); a wall
+  /// does not spin, so at a wall contact it is omega_1 · normal / 2.
+  double mean_spin_about_normal = 0.0;
   double effective_mass = 0.0;     ///< kg, m1 m2 / (m1 + m2); a wall counts as infinitely heavy (= m1)
   double radius_first = 0.0;       ///< m
   double radius_second = 0.0;      ///< m; 0 for a wall facet (PFC: a ball–facet contact uses the ball radius only)
   double dt = 0.0;                 ///< s, the time step (incremental laws)
 };
+
+/// ContactKinematics::mean_spin_about_normal of bodies spinning at w1 and w2.
+[[nodiscard]] inline double mean_spin_about_normal(const Vec3& w1, const Vec3& w2, const Vec3& normal) noexcept {
+  return 0.5 * dot(w1 + w2, normal);
+}
 
 /// What a law returns: the force on the first body, acting at the contact
 /// point, and an optional pure couple. The second body receives the opposite.

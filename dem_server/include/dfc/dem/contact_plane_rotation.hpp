@@ -1,13 +1,28 @@
 #pragma once
 // Stored in-plane vectors (shear forces, bending moments, shear or bending
 // displacements) carried into the current contact plane, every step, before a
-// law adds this step's increments (reference/dem-physics.md §2.3; PFC's
-// convention: project, then restore the magnitude; LAMMPS gran/hooke/history
-// projects without restoring it), or turned by the rotation of the contact
-// frame itself when the law keeps the previous normal.
+// law adds this step's increments (reference/dem-physics.md §2.3 and §8 item 3:
+// they turn with the contact frame). The frame turns in two parts, as in
+// PFC3D's contact update:
+//   tilt:  the plane follows its normal from the previous step's to the
+//          current one: projected, then the magnitude restored (PFC's
+//          convention; LAMMPS gran/hooke/history projects without restoring
+//          it), or turned by the smallest rotation between the two normals
+//          when the law keeps the previous normal (ContactFrameRotation);
+//   twirl: the plane turns about its own normal with the pair's common spin,
+//          (omega_1 + omega_2)/2 · n dt (ContactTwirl). Without it a pair that
+//          spins rigidly about its line of centres leaves its stored shear
+//          force fixed in space while the bodies turn under it: the contact
+//          force is then not objective and the stress from the contacts not a
+//          tensor (M. R. Kuhn et al. 2020, "Linear-frictional contact model
+//          for 3D discrete element simulations of granular systems", its
+//          "twirling" correction; Itasca PFC3D 3.x Theory and Background, the
+//          second rotation of the shear force, by the mean spin of the two
+//          bodies about the normal).
 #include <cmath>
 #include <cstddef>
 
+#include "dfc/dem/contact_model.hpp"
 #include "dfc/dem/vec3.hpp"
 
 namespace dfc::dem {
@@ -58,21 +73,52 @@ struct ContactFrameRotation {
   [[nodiscard]] Vec3 apply(const Vec3& v) const noexcept { return v - (dot(v, normal) * inverse_one_plus_cos) * axis_sum; }
 };
 
-/// Carries, in place, every in-plane vector of a contact's history into the
-/// plane normal to `normal`: the 3 doubles at each offset of Law::in_plane_history
+/// The turn of the contact plane about its own normal during one step, by
+/// theta = mean_spin_about_normal * dt (see the top of this file). Applied as
+/// the exact rotation by 2 atan(theta/2) (Cayley form: cos = (1 - t²)/(1 + t²),
+/// sin = 2t/(1 + t²), t = theta/2): it keeps |v| to round-off with one
+/// division and no trigonometric call, and differs from theta by theta³/12,
+/// far below the O(theta²) error of the step's first-order kinematics. With
+/// no spin it is the identity: cos = 1 and sin = 0, so v comes back unchanged
+/// (a zero component may change sign).
+struct ContactTwirl {
+  double cos_angle = 1.0;
+  double sin_angle = 0.0;
+
+  [[nodiscard]] static ContactTwirl of(const ContactKinematics& k) noexcept {
+    const double t = 0.5 * k.mean_spin_about_normal * k.dt;
+    const double t2 = t * t;
+    const double inverse = 1.0 / (1.0 + t2);
+    return {(1.0 - t2) * inverse, 2.0 * t * inverse};
+  }
+  /// v (in the plane normal to `normal`) turned about `normal`.
+  [[nodiscard]] Vec3 apply(const Vec3& v, const Vec3& normal) const noexcept { return cos_angle * v + sin_angle * cross(normal, v); }
+};
+
+/// A stored in-plane vector carried into k's contact plane: tilted by
+/// projection with its magnitude restored, then twirled.
+[[nodiscard]] inline Vec3 turn_with_contact_plane(const Vec3& v, const ContactKinematics& k) noexcept {
+  return ContactTwirl::of(k).apply(rotate_into_contact_plane(v, k.normal), k.normal);
+}
+
+/// Carries, in place, every in-plane vector of a contact's history into k's
+/// contact plane: the 3 doubles at each offset of Law::in_plane_history
 /// (contact_model.hpp RotatesInPlaneHistory). A law that stores the previous
-/// step's normal (Law::previous_normal_offset, 3 doubles) turns them all with
+/// step's normal (Law::previous_normal_offset, 3 doubles) tilts them all with
 /// one ContactFrameRotation and stores the new normal; any other projects and
-/// rescales each (rotate_into_contact_plane).
+/// rescales each (rotate_into_contact_plane). Both then twirl them (ContactTwirl).
 template <class Law>
-void rotate_in_plane_history(double* history, const Vec3& normal) noexcept {
+void rotate_in_plane_history(double* history, const ContactKinematics& k) noexcept {
+  const ContactTwirl twirl = ContactTwirl::of(k);
   if constexpr (requires { Law::previous_normal_offset; }) {
     double* stored_normal = history + Law::previous_normal_offset;
-    const ContactFrameRotation rotation = ContactFrameRotation::between(load_vec3(stored_normal), normal);
-    for (const std::size_t offset : Law::in_plane_history) store_vec3(history + offset, rotation.apply(load_vec3(history + offset)));
-    store_vec3(stored_normal, normal);
+    const ContactFrameRotation tilt = ContactFrameRotation::between(load_vec3(stored_normal), k.normal);
+    for (const std::size_t offset : Law::in_plane_history)
+      store_vec3(history + offset, twirl.apply(tilt.apply(load_vec3(history + offset)), k.normal));
+    store_vec3(stored_normal, k.normal);
   } else {
-    for (const std::size_t offset : Law::in_plane_history) store_vec3(history + offset, rotate_into_contact_plane(load_vec3(history + offset), normal));
+    for (const std::size_t offset : Law::in_plane_history)
+      store_vec3(history + offset, twirl.apply(rotate_into_contact_plane(load_vec3(history + offset), k.normal), k.normal));
   }
 }
 

@@ -72,7 +72,7 @@ struct LinearLaw {
   static constexpr std::array<std::size_t, 1> in_plane_history{0};
 
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, const double* constants, double* history) const noexcept {
-    rotate_in_plane_history<LinearLaw>(history, k.normal);
+    rotate_in_plane_history<LinearLaw>(history, k);
     return evaluate_in_plane(k, constants, history);
   }
 

@@ -108,7 +108,7 @@ struct LinearPbondLaw {
   }
 
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, const double* c, double* history) const noexcept {
-    rotate_in_plane_history<LinearPbondLaw>(history, k.normal);
+    rotate_in_plane_history<LinearPbondLaw>(history, k);
     return evaluate_in_plane(k, c, history);
   }
 

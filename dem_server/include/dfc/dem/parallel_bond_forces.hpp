@@ -36,9 +36,9 @@ struct BondLoad {
   double twist = 0.0;   ///< N m, about n
   Vec3 bend;            ///< N m, in the contact plane
 
-  /// Reads the stored load, carrying shear and bending into the current plane.
-  [[nodiscard]] static BondLoad load(const double* h, const Vec3& normal) noexcept {
-    return {h[0], load_in_plane(h + shear_offset, normal), h[4], load_in_plane(h + bend_offset, normal)};
+  /// Reads the stored load, carrying shear and bending into k's contact plane.
+  [[nodiscard]] static BondLoad load(const double* h, const ContactKinematics& k) noexcept {
+    return {h[0], load_in_plane(h + shear_offset, k), h[4], load_in_plane(h + bend_offset, k)};
   }
   /// Reads a stored load already carried into the current plane.
   [[nodiscard]] static BondLoad load_in_current_plane(const double* h) noexcept {

@@ -95,7 +95,7 @@ inline ContactForce SoftBondLaw::evaluate(const ContactKinematics& k, double* hi
   const double kn = deformability_bond_kn(k, emod);
   BondState state = bond_state(history);
   if (is_bonded(state)) {
-    BondLoad load = BondLoad::load(history + load_offset, k.normal);
+    BondLoad load = BondLoad::load(history + load_offset, k);
     const BondIncrements d = bond_increments(k);
     const double bend_before = norm(load.bend);
     load.add_elastic(d, BondStiffness::of(s, kn, kn / kratio));
