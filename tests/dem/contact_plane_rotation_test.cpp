@@ -1,8 +1,9 @@
 // Stored in-plane vectors turning with the contact plane
 // (contact_plane_rotation.hpp): the frame rotation used by laws that keep the
 // previous normal (linear_pbond) and the twirl about the normal, checked
-// against Rodrigues' formula written out independently, and the invariants any rotation of the contact frame
-// must keep (length, the new plane, the direction along the rotation axis).
+// against Rodrigues' formula written out independently, and the invariants
+// any rotation of the contact frame must keep (length, the new plane, the
+// direction along the rotation axis).
 #include <gtest/gtest.h>
 
 #include <array>

@@ -26,7 +26,7 @@ struct BondIncrements {
   return {vn * k.dt, k.dt * (k.relative_velocity - vn * n), wn * k.dt, k.dt * (k.relative_angular_velocity - wn * n)};
 }
 
-/// A stored in-plane vector carried into k's contact plane (tilt and twirl), magnitude kept.
-[[nodiscard]] inline Vec3 load_in_plane(const double* h, const ContactKinematics& k) noexcept { return turn_with_contact_plane(load_vec3(h), k); }
+/// A stored in-plane vector carried into the contact's current plane (tilt and twirl), magnitude kept.
+[[nodiscard]] inline Vec3 load_in_plane(const double* h, const ContactPlaneTurn& turn) noexcept { return turn.apply(load_vec3(h)); }
 
 }  // namespace dfc::dem

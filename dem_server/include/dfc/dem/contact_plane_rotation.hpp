@@ -95,11 +95,17 @@ struct ContactTwirl {
   [[nodiscard]] Vec3 apply(const Vec3& v, const Vec3& normal) const noexcept { return cos_angle * v + sin_angle * cross(normal, v); }
 };
 
-/// A stored in-plane vector carried into k's contact plane: tilted by
-/// projection with its magnitude restored, then twirled.
-[[nodiscard]] inline Vec3 turn_with_contact_plane(const Vec3& v, const ContactKinematics& k) noexcept {
-  return ContactTwirl::of(k).apply(rotate_into_contact_plane(v, k.normal), k.normal);
-}
+/// The whole turn of one contact's plane during a step for a law that keeps
+/// no previous normal: tilt by projection with the magnitude restored
+/// (rotate_into_contact_plane), then twirl. Built once per contact, applied
+/// to each of its stored vectors.
+struct ContactPlaneTurn {
+  Vec3 normal;
+  ContactTwirl twirl;
+
+  [[nodiscard]] static ContactPlaneTurn of(const ContactKinematics& k) noexcept { return {k.normal, ContactTwirl::of(k)}; }
+  [[nodiscard]] Vec3 apply(const Vec3& v) const noexcept { return twirl.apply(rotate_into_contact_plane(v, normal), normal); }
+};
 
 /// Carries, in place, every in-plane vector of a contact's history into k's
 /// contact plane: the 3 doubles at each offset of Law::in_plane_history
@@ -109,16 +115,16 @@ struct ContactTwirl {
 /// rescales each (rotate_into_contact_plane). Both then twirl them (ContactTwirl).
 template <class Law>
 void rotate_in_plane_history(double* history, const ContactKinematics& k) noexcept {
-  const ContactTwirl twirl = ContactTwirl::of(k);
   if constexpr (requires { Law::previous_normal_offset; }) {
+    const ContactTwirl twirl = ContactTwirl::of(k);
     double* stored_normal = history + Law::previous_normal_offset;
     const ContactFrameRotation tilt = ContactFrameRotation::between(load_vec3(stored_normal), k.normal);
     for (const std::size_t offset : Law::in_plane_history)
       store_vec3(history + offset, twirl.apply(tilt.apply(load_vec3(history + offset)), k.normal));
     store_vec3(stored_normal, k.normal);
   } else {
-    for (const std::size_t offset : Law::in_plane_history)
-      store_vec3(history + offset, twirl.apply(rotate_into_contact_plane(load_vec3(history + offset), k.normal), k.normal));
+    const ContactPlaneTurn turn = ContactPlaneTurn::of(k);
+    for (const std::size_t offset : Law::in_plane_history) store_vec3(history + offset, turn.apply(load_vec3(history + offset)));
   }
 }
 
