@@ -6,14 +6,17 @@
 // normal by omega·n dt each step; contact_plane_rotation.hpp ContactTwirl).
 // Without the twirl the stored shear force and bending moment would stay
 // behind by the whole spin about the normal (tens of degrees here), so each
-// check below fails by O(1) without it.
+// check below fails by O(1) without it. The last test checks the same turn
+// at a wall contact, where only the sphere spins.
 #include <cmath>
 #include <numbers>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "dem_test_support.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
+#include "dfc/dem/wall_builders.hpp"
 
 namespace dfc::dem {
 namespace {
@@ -132,6 +135,47 @@ TEST(ContactObjectivity, DamageBondLoadsTurnWithARigidlyRotatingPair) {
       n0, axis, steps);
   expect_turned(after.force, before.force, projection_tolerance, "force");
   expect_turned(after.couple, before.couple, projection_tolerance, "couple");
+}
+
+
+// A wall does not spin, so a wall contact's plane twirls with half the
+// sphere's spin about the normal: the mean of the two bodies' spins
+// (contact_kernels.hpp evaluate_wall_contacts). A sphere pressed on a floor
+// and spinning about the vertical does not slide (its contact point is on the
+// spin axis), so the shear force it stored only turns: by 2 atan(omega dt/4)
+// a step (ContactTwirl with theta = omega dt/2), half the sphere's own turn,
+// in the same sense. Without the twirl at walls the force would not turn at
+// all; with the sphere's whole spin it would turn twice as far: either misses
+// by 0.5 rad here.
+TEST(ContactObjectivity, WallContactShearForceTurnsWithHalfTheSpheresSpin) {
+  constexpr double r = 1e-3, kn = 1e5, overlap = 1e-6, step = 1e-4, omega = 10.0;
+  constexpr int spin_steps = 1000;  // omega t / 2 = 0.5 rad
+  // So heavy (4e6 kg, I = 1.7 kg m^2) that the contact's 0.1 N and 1e-2 N
+  // move it by 1e-16 m a step; its velocities are set again before each step.
+  constexpr double density = 1e15;
+  const ContactLawSetting law = test::linear(kn, kn, 0.5);
+  Simulation sim = test::undamped(law);
+  sim.add_wall(make_wall("floor", make_plane_mesh({0, 0, 0}, {0, 0, 1}, 0.05), WallMotion::prescribed, law));
+  // Inside one facet of the floor, away from the diagonal its two triangles share.
+  sim.add_sphere(0, {0.01, 0.004, r - overlap}, r, density);
+  // One step of sliding along x stores a shear force k_s v dt = 1e-2 N (below mu F_n = 0.05 N).
+  sim.particles_for_edit().velocity[0] = {1e-3, 0.0, 0.0};
+  sim.step(step);
+  const Vec3 before = sim.particles().force[0];
+  ASSERT_GT(std::hypot(before.x, before.y), 1e-3);
+  for (int s = 0; s < spin_steps; ++s) {
+    sim.particles_for_edit().velocity[0] = {};
+    sim.particles_for_edit().angular_velocity[0] = {0.0, 0.0, omega};
+    sim.step(step);
+  }
+  const Vec3 after = sim.particles().force[0];
+  const double angle = spin_steps * 2.0 * std::atan(0.25 * omega * step);
+  const Vec3 expected = rotate(Vec3{before.x, before.y, 0.0}, {0.0, 0.0, 1.0}, angle);
+  // The normal stays -z exactly (no tilt), and nothing slides: only the
+  // rounding of 1000 rotations (~1e-13 relative) separates the two.
+  const double shear = std::hypot(before.x, before.y);
+  EXPECT_NEAR(after.x, expected.x, 1e-9 * shear);
+  EXPECT_NEAR(after.y, expected.y, 1e-9 * shear);
 }
 
 }  // namespace
