@@ -20,6 +20,42 @@ bool facet_contains(const Facet& facet, std::uint32_t vertex) noexcept {
   return facet[0] == vertex || facet[1] == vertex || facet[2] == vertex;
 }
 
+bool facets_share_a_vertex(const Facet& a, const Facet& b) noexcept {
+  return facet_contains(b, a[0]) || facet_contains(b, a[1]) || facet_contains(b, a[2]);
+}
+
+bool row_is_clear(const double* row, std::size_t stride) noexcept {
+  return std::all_of(row, row + stride, [](double v) { return v == 0.0; });
+}
+
+/// A contact that moved onto a neighbouring facet keeps its history (see
+/// wall_contacts.hpp). In candidates [begin, end) of one particle: each
+/// facet no longer selected whose row still holds a history (the force loop
+/// clears it only after this) hands it to the newly selected facet (clear row)
+/// that shares a vertex with it and whose contact point is nearest its own,
+/// within `reach`; ties go to the lower index.
+void carry_history_to_new_facets(const Wall& wall, WallContacts& contacts, std::span<const Vec3> points, std::size_t begin, std::size_t end,
+                                 double reach) {
+  for (std::size_t m = begin; m < end; ++m) {
+    if (contacts.selected[m] != 0 || row_is_clear(contacts.row(m), contacts.stride)) continue;
+    const Facet& old_facet = wall.facets[contacts.facet[m]];
+    std::size_t heir = end;
+    double nearest2 = reach * reach;
+    for (std::size_t k = begin; k < end; ++k) {
+      if (contacts.selected[k] == 0 || !row_is_clear(contacts.row(k), contacts.stride)) continue;
+      if (!facets_share_a_vertex(old_facet, wall.facets[contacts.facet[k]])) continue;
+      const double d2 = norm2(points[k] - points[m]);
+      if (d2 < nearest2) {
+        nearest2 = d2;
+        heir = k;
+      }
+    }
+    if (heir == end) continue;
+    std::copy(contacts.row(m), contacts.row(m) + contacts.stride, contacts.row(heir));
+    std::fill(contacts.row(m), contacts.row(m) + contacts.stride, 0.0);
+  }
+}
+
 }  // namespace
 
 void select_wall_contacts(const Wall& wall, const ParticleStore& particles, WallContacts& contacts, std::span<Vec3> points, int threads) {
@@ -57,6 +93,7 @@ void select_wall_contacts(const Wall& wall, const ParticleStore& particles, Wall
         if (better) contacts.selected[k] = 0;
       }
     }
+    if (contacts.stride > 0) carry_history_to_new_facets(wall, contacts, points, begin, end, particles.radius[contacts.particle[begin]]);
   }
 }
 

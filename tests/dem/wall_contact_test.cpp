@@ -1,7 +1,10 @@
 // Sphere–facet contacts: normal and overlap on a face, an edge and a vertex;
 // barycentric distribution of the force to the facet's vertices (DESIGN §4);
-// one contact per surface feature on meshes with shared edges and vertices.
+// one contact per surface feature on meshes with shared edges and vertices;
+// the contact's history carried onto the next facet when the sphere crosses
+// an internal edge.
 #include <cmath>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -85,6 +88,55 @@ TEST(WallContact, PileTipCentreSharedBy24FacetsGivesOneContact) {
     EXPECT_NEAR(f.z, -kn * overlap, 1e-9 * kn * overlap) << "offset " << offset;
     EXPECT_NEAR(std::hypot(f.x, f.y), 0.0, 1e-12 * kn * overlap);
   }
+}
+
+constexpr double overlap_slide = 1e-5, travel = 2e-4, ks_slide = 1e3;
+
+/// Slides a sphere pressed `overlap_slide` into `mesh` at `start` along the
+/// unit `direction` (tangent to the wall there) by `distance`, in `steps` steps
+/// of prescribed motion (a sphere so heavy that its contact forces move it
+/// by ~1e-16 m a step; its velocities are set again before each step). Returns
+/// the force on it along `direction` at the end.
+double shear_after_slide(WallMesh mesh, Vec3 start, Vec3 direction, double distance, int steps) {
+  constexpr double step = 1e-4, density = 1e15;
+  const ContactLawSetting law = test::linear(kn, ks_slide, 0.5);
+  Simulation sim = test::undamped(law);
+  sim.add_wall(make_wall("w", std::move(mesh), WallMotion::prescribed, law));
+  sim.add_sphere(0, start, r, density);
+  const Vec3 velocity = (distance / (steps * step)) * direction;
+  for (int s = 0; s < steps; ++s) {
+    sim.particles_for_edit().velocity[0] = velocity;
+    sim.particles_for_edit().angular_velocity[0] = {};  // the shear force's moment would roll it
+    sim.step(step);
+  }
+  return dot(sim.particles().force[0], direction);
+}
+
+// A stuck sphere dragged by u along a wall carries the shear force k_s u
+// against the motion, wherever it is on the wall: crossing the edge two facets
+// share must not reset it (wall_contacts.hpp). Here the sphere crosses it
+// halfway, so a reset would leave about half. The normal force (1 N) holds
+// the 0.2 N shear well below mu F_n, and the normal does not turn, so the
+// shear force is k_s times the sum of the steps' displacements: rounding
+// (~1e-13 relative) apart, exact.
+TEST(WallContact, ShearForceCarriesAcrossTheDiagonalOfAFlatPlane) {
+  // make_plane_mesh's two triangles share the diagonal y = -x here.
+  const double f = shear_after_slide(make_plane_mesh({0, 0, 0}, {0, 0, 1}, 0.02), {2e-3, -2e-3 - 0.5 * travel, r - overlap_slide}, {0, 1, 0},
+                                     travel, 2000);
+  EXPECT_NEAR(f, -ks_slide * travel, 1e-9 * ks_slide * travel);
+}
+
+TEST(WallContact, ShearForceCarriesAcrossTheDiagonalOfAPileFacet) {
+  // The side panel between angles 0 and 15 degrees: its two triangles share
+  // the diagonal from (0 deg, z = 0) to (15 deg, z = 20 mm), at mid height in
+  // the panel's middle. The sphere slides along the axis across it.
+  constexpr double radius = 5e-3, length = 2e-2;
+  const WallMesh pile = make_closed_cylinder_mesh({.axis_x = 0, .axis_y = 0, .tip_z = 0, .radius = radius, .length = length, .sides = 24});
+  const double half_angle = std::numbers::pi / 24.0;
+  const double centre_distance = radius * std::cos(half_angle) + r - overlap_slide;
+  const Vec3 start{centre_distance * std::cos(half_angle), centre_distance * std::sin(half_angle), 0.5 * length - 0.5 * travel};
+  const double f = shear_after_slide(pile, start, {0, 0, 1}, travel, 2000);
+  EXPECT_NEAR(f, -ks_slide * travel, 1e-9 * ks_slide * travel);
 }
 
 }  // namespace

@@ -18,6 +18,14 @@
 // vertices are recognised by their index. Every facet that contains X is a
 // candidate whenever X is within reach, so the rule needs nothing outside
 // the particle's group.
+//
+// A contact's history (its stored shear force, ...) is kept per facet. A
+// sphere that slides or rolls across a shared edge, from facet A onto its
+// neighbour B, is still the same contact: B takes over A's history in the
+// step its selection moves. Then a flat wall behaves the same however it is
+// cut into triangles; otherwise the shear force would drop to zero at every
+// internal edge: on the diagonal of each plane wall, and between the facets
+// of a pile.
 #include <cstddef>
 #include <span>
 
@@ -28,7 +36,8 @@
 namespace dfc::dem {
 
 /// Fills weights, distance, feature and selected of every candidate of
-/// `wall`, and the contact point into `points` (size contacts.size()).
+/// `wall`, and the contact point into `points` (size contacts.size()); moves
+/// the history of a contact that changed facets to its new facet.
 void select_wall_contacts(const Wall& wall, const ParticleStore& particles, WallContacts& contacts, std::span<Vec3> points, int threads);
 
 }  // namespace dfc::dem
