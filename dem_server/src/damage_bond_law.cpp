@@ -69,14 +69,14 @@ ContactForce DamageBondLaw::update_bond(const ContactKinematics& k, double* h) c
 
   // 1. Total displacements (rotated with the contact plane) and the plastic parts.
   const BondIncrements d = bond_increments(k);
-  const ContactPlaneTurn turn = ContactPlaneTurn::of(k);
+  const ContactTwirl twirl = ContactTwirl::of(k);
   const double u_n = h[opening] + d.normal;
-  const Vec3 u_s = load_in_plane(h + slip, turn) + d.shear;
+  const Vec3 u_s = load_in_plane(h + slip, k.normal, twirl) + d.shear;
   const double theta_t = h[twist] + d.twist;
-  const Vec3 theta_b = load_in_plane(h + bend, turn) + d.bend;
+  const Vec3 theta_b = load_in_plane(h + bend, k.normal, twirl) + d.bend;
   double u_np = h[plastic_opening];
-  Vec3 u_sp = load_in_plane(h + plastic_slip, turn);
-  Vec3 theta_bp = load_in_plane(h + plastic_bend, turn);
+  Vec3 u_sp = load_in_plane(h + plastic_slip, k.normal, twirl);
+  Vec3 theta_bp = load_in_plane(h + plastic_bend, k.normal, twirl);
 
   // 2. Elastic trial in normalised coordinates (the (1-D) factors cancel).
   double e_n = u_n - u_np;

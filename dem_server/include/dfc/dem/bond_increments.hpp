@@ -27,6 +27,8 @@ struct BondIncrements {
 }
 
 /// A stored in-plane vector carried into the contact's current plane (tilt and twirl), magnitude kept.
-[[nodiscard]] inline Vec3 load_in_plane(const double* h, const ContactPlaneTurn& turn) noexcept { return turn.apply(load_vec3(h)); }
+[[nodiscard]] inline Vec3 load_in_plane(const double* h, const Vec3& normal, const ContactTwirl& twirl) noexcept {
+  return turn_with_contact_plane(load_vec3(h), normal, twirl);
+}
 
 }  // namespace dfc::dem

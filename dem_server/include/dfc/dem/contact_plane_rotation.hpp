@@ -95,17 +95,17 @@ struct ContactTwirl {
   [[nodiscard]] Vec3 apply(const Vec3& v, const Vec3& normal) const noexcept { return cos_angle * v + sin_angle * cross(normal, v); }
 };
 
-/// The whole turn of one contact's plane during a step for a law that keeps
-/// no previous normal: tilt by projection with the magnitude restored
-/// (rotate_into_contact_plane), then twirl. Built once per contact, applied
-/// to each of its stored vectors.
-struct ContactPlaneTurn {
-  Vec3 normal;
-  ContactTwirl twirl;
-
-  [[nodiscard]] static ContactPlaneTurn of(const ContactKinematics& k) noexcept { return {k.normal, ContactTwirl::of(k)}; }
-  [[nodiscard]] Vec3 apply(const Vec3& v) const noexcept { return twirl.apply(rotate_into_contact_plane(v, normal), normal); }
-};
+/// The whole turn of a stored in-plane vector during a step for a law that
+/// keeps no previous normal: tilted by projection with its magnitude restored
+/// (rotate_into_contact_plane), then twirled. The twirl is formed once per
+/// contact (ContactTwirl::of) and passed to each of its vectors.
+// A free function on purpose: an aggregate holding a copy of the normal with
+// the twirl, built per contact, was left on the stack by GCC 12 and read back
+// 16 bytes at a time from two 8-byte stores (a store-forwarding stall): +45 %
+// time of the whole unbonded benchmark (docs/dem_benchmarks.md, ninth pass).
+[[nodiscard]] inline Vec3 turn_with_contact_plane(const Vec3& v, const Vec3& normal, const ContactTwirl& twirl) noexcept {
+  return twirl.apply(rotate_into_contact_plane(v, normal), normal);
+}
 
 /// Carries, in place, every in-plane vector of a contact's history into k's
 /// contact plane: the 3 doubles at each offset of Law::in_plane_history
@@ -123,8 +123,9 @@ void rotate_in_plane_history(double* history, const ContactKinematics& k) noexce
       store_vec3(history + offset, twirl.apply(tilt.apply(load_vec3(history + offset)), k.normal));
     store_vec3(stored_normal, k.normal);
   } else {
-    const ContactPlaneTurn turn = ContactPlaneTurn::of(k);
-    for (const std::size_t offset : Law::in_plane_history) store_vec3(history + offset, turn.apply(load_vec3(history + offset)));
+    const ContactTwirl twirl = ContactTwirl::of(k);
+    for (const std::size_t offset : Law::in_plane_history)
+      store_vec3(history + offset, turn_with_contact_plane(load_vec3(history + offset), k.normal, twirl));
   }
 }
 

@@ -38,8 +38,8 @@ struct BondLoad {
 
   /// Reads the stored load, carrying shear and bending into k's contact plane.
   [[nodiscard]] static BondLoad load(const double* h, const ContactKinematics& k) noexcept {
-    const ContactPlaneTurn turn = ContactPlaneTurn::of(k);
-    return {h[0], load_in_plane(h + shear_offset, turn), h[4], load_in_plane(h + bend_offset, turn)};
+    const ContactTwirl twirl = ContactTwirl::of(k);
+    return {h[0], load_in_plane(h + shear_offset, k.normal, twirl), h[4], load_in_plane(h + bend_offset, k.normal, twirl)};
   }
   /// Reads a stored load already carried into the current plane.
   [[nodiscard]] static BondLoad load_in_current_plane(const double* h) noexcept {
