@@ -100,9 +100,9 @@ struct ContactTwirl {
 /// (rotate_into_contact_plane), then twirled. The twirl is formed once per
 /// contact (ContactTwirl::of) and passed to each of its vectors.
 // A free function on purpose: an aggregate holding a copy of the normal with
-// the twirl, built per contact, was left on the stack by GCC 12 and read back
-// 16 bytes at a time from two 8-byte stores (a store-forwarding stall): +45 %
-// time of the whole unbonded benchmark (docs/dem_benchmarks.md, ninth pass).
+// the twirl, built per contact, was kept on the stack by GCC 12 and read back
+// from it for every vector (perf: those loads were the hottest instructions):
+// +45 % time of the whole unbonded benchmark (docs/dem_benchmarks.md, ninth pass).
 [[nodiscard]] inline Vec3 turn_with_contact_plane(const Vec3& v, const Vec3& normal, const ContactTwirl& twirl) noexcept {
   return twirl.apply(rotate_into_contact_plane(v, normal), normal);
 }
