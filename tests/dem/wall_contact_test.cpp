@@ -139,5 +139,14 @@ TEST(WallContact, ShearForceCarriesAcrossTheDiagonalOfAPileFacet) {
   EXPECT_NEAR(f, -ks_slide * travel, 1e-9 * ks_slide * travel);
 }
 
+TEST(WallContact, ShearForceCarriesAcrossTheFacetsAroundThePileTipCentre) {
+  // The flat tip is 24 triangles around its centre. Sliding under it along x,
+  // 20 um beside the centre, the contact crosses about ten of their edges
+  // within 0.2 mm, some within a few steps of each other.
+  const WallMesh pile = make_closed_cylinder_mesh({.axis_x = 0, .axis_y = 0, .tip_z = 0, .radius = 5e-3, .length = 2e-2, .sides = 24});
+  const double f = shear_after_slide(pile, {-0.5 * travel, 2e-5, -(r - overlap_slide)}, {1, 0, 0}, travel, 2000);
+  EXPECT_NEAR(f, -ks_slide * travel, 1e-9 * ks_slide * travel);
+}
+
 }  // namespace
 }  // namespace dfc::dem
