@@ -2,6 +2,9 @@
 // porosity, the stress servo (isotropic, K0, triaxial) and the config errors.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "dem_test_support.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/cell_stress.hpp"
@@ -32,7 +35,7 @@ nlohmann::json rev_config(int threads = 1) {
 TEST(RadiusExpansion, HitsTheTargetPorosityToRoundOffBeforeRelaxation) {
   const DemConfig config = parse_dem_config(rev_config());
   double solid = 0.0;
-  for (const double r : config.particles.final_radius) solid += 4.0 / 3.0 * M_PI * r * r * r;
+  for (const double r : config.particles.final_radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   EXPECT_NEAR(1.0 - solid / config.periodic->cell.volume(), 0.42, 1e-14);  // cube root scaling: a few ulps
   EXPECT_GT(config.particles.spheres.size(), 250u);
   for (std::size_t k = 0; k < config.particles.spheres.size(); ++k)
@@ -77,7 +80,7 @@ TEST(CellServo, IsotropicConsolidationReachesTheTargetWithinOnePercent) {
   // porosity 0.414 and 0.430, on both sides of the expanded 0.42, each at
   // least 0.002 away from it; so the test asserts the change, not its sign.
   double solid = 0.0;
-  for (const double r : model.simulation->particles().radius) solid += 4.0 / 3.0 * M_PI * r * r * r;
+  for (const double r : model.simulation->particles().radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   EXPECT_NEAR(model.preparation->porosity, 1.0 - solid / model.simulation->periodic_cell()->volume(), 1e-12);
   EXPECT_GT(std::abs(model.preparation->porosity - 0.42), 1e-4);
 }

@@ -115,15 +115,14 @@ struct ContactTwirl {
 /// rescales each (rotate_into_contact_plane). Both then twirl them (ContactTwirl).
 template <class Law>
 void rotate_in_plane_history(double* history, const ContactKinematics& k) noexcept {
+  const ContactTwirl twirl = ContactTwirl::of(k);
   if constexpr (requires { Law::previous_normal_offset; }) {
-    const ContactTwirl twirl = ContactTwirl::of(k);
     double* stored_normal = history + Law::previous_normal_offset;
     const ContactFrameRotation tilt = ContactFrameRotation::between(load_vec3(stored_normal), k.normal);
     for (const std::size_t offset : Law::in_plane_history)
       store_vec3(history + offset, twirl.apply(tilt.apply(load_vec3(history + offset)), k.normal));
     store_vec3(stored_normal, k.normal);
   } else {
-    const ContactTwirl twirl = ContactTwirl::of(k);
     for (const std::size_t offset : Law::in_plane_history)
       store_vec3(history + offset, turn_with_contact_plane(load_vec3(history + offset), k.normal, twirl));
   }
