@@ -18,6 +18,10 @@ BUILD=${1:-$ROOT/build}
 PEERS=${PEERS_DIR:-$ROOT/../shared/bench/peers}
 SIZE=${SIZE:-12k}; WARMUP=${WARMUP:-1000}; STEPS=${STEPS:-2000}; REPEAT=${REPEAT:-3}
 DATA=$PEERS/data/pack_$SIZE.data
+if [ ! -f "$DATA" ]; then
+  echo "dem_peers.sh: no peer packing at $DATA; set PEERS_DIR to the folder that holds data/pack_$SIZE.data (../shared/bench/peers of the workspace)" >&2
+  exit 2
+fi
 LOGS=$(mktemp -d)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 
