@@ -137,7 +137,6 @@ TEST(ContactObjectivity, DamageBondLoadsTurnWithARigidlyRotatingPair) {
   expect_turned(after.couple, before.couple, projection_tolerance, "couple");
 }
 
-
 // A wall does not spin, so a wall contact's plane twirls with half the
 // sphere's spin about the normal: the mean of the two bodies' spins
 // (contact_kernels.hpp evaluate_wall_contacts). A sphere pressed on a floor

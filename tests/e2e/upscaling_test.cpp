@@ -62,9 +62,9 @@ double spread(const std::vector<double>& v) {
 // One 290-sphere packing is too small to stand for S = 2: round-off alone
 // moved its peak by 10 % (a rotation formula that changed only the last bits
 // gave 714.6 -> 787.8 kPa; docs/dem_upscaling.md), and five seeds spread over
-// 680-799 kPa. So S = 2 runs in five packings (seeds 11-15) and enters the
-// comparison by its mean (measured: S = 1 697.4 kPa against a mean of
-// 724.0 kPa, spread 3.7 %); the mean of five has about 1/sqrt(5) of a single
+// 616-705 kPa. So S = 2 runs in five packings (seeds 11-15) and enters the
+// comparison by its mean (measured: S = 1 708.8 kPa against a mean of
+// 661.9 kPa, spread 6.8 %; stiffness 7.8 %); the mean of five has about 1/sqrt(5) of a single
 // packing's scatter, which leaves the 10 % criterion a real margin. Each
 // curve must also be a peak followed by softening (the peak is not the last
 // sample and the final stress is below 80 % of it), or the comparison would
