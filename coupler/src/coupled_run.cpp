@@ -35,6 +35,15 @@ double scalar_monitor(const nlohmann::json& monitors, const char* name) {
   return it != monitors.end() && it->is_number() ? it->get<double>() + 0.0 : kNaN;
 }
 
+/// True when every participant reported an unbalanced_force_ratio at most
+/// `limit` (a participant that reports none, or NaN, is not in equilibrium).
+bool every_in_equilibrium(const std::map<std::string, nlohmann::json>& monitors, double limit) {
+  if (monitors.empty()) return false;
+  for (const auto& [slot, values] : monitors)
+    if (!(scalar_monitor(values, "unbalanced_force_ratio") <= limit)) return false;
+  return true;
+}
+
 std::array<double, 3> vector_monitor(const nlohmann::json& monitors, const char* name) {
   const auto it = monitors.find(name);
   if (it == monitors.end() || !it->is_array() || it->size() != 3) return {kNaN, kNaN, kNaN};
@@ -296,6 +305,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     const auto wall_start = std::chrono::steady_clock::now();
     auto last_flush = wall_start;
     std::int64_t done = 0;
+    bool equilibrium_reached = false;
     std::map<std::string, nlohmann::json> monitors;
     for (std::int64_t exchange = 0; exchange < scenario.run.exchanges; ++exchange) {
       if (options.stop_requested != nullptr && options.stop_requested->load()) {
@@ -407,6 +417,11 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
       if (std::isfinite(pile_force))
         detail << " pile " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, " << pile_force << " N";
       progress.update(done, detail.str());
+      if (scenario.run.stop_unbalanced_force_ratio && done >= scenario.run.stop_min_exchanges &&
+          every_in_equilibrium(monitors, *scenario.run.stop_unbalanced_force_ratio)) {
+        equilibrium_reached = true;
+        break;
+      }
     }
     progress.finish();
 
@@ -421,6 +436,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
                               {"wall_time_s", wall},
                               {"max_relative_force_mismatch", worst_balance},
                               {"stopped_by_signal", status == 130}};
+    if (scenario.run.stop_unbalanced_force_ratio) summary["equilibrium_reached"] = equilibrium_reached;
     writer->set_attribute("summary", summary.dump());
     writer->close();
     stop_all();
@@ -432,6 +448,9 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     if (dem) text << " (" << dem_step << " DEM steps";
     if (continuum) text << (dem ? ", " : " (") << continuum_step << " continuum steps";
     text << ", t = " << end_time << " s) in " << format_duration(wall) << ".";
+    if (scenario.run.stop_unbalanced_force_ratio)
+      text << (equilibrium_reached ? " Equilibrium reached: every unbalanced_force_ratio <= " : " Equilibrium NOT reached within run.exchanges: some unbalanced_force_ratio > ")
+           << *scenario.run.stop_unbalanced_force_ratio << " (run.stop_when).";
     if (std::isfinite(peak_pile_force))
       text << " Pile penetration " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, final pile force "
            << scalar_monitor(monitors["dem"], "pile_force_n") << " N (peak " << peak_pile_force << " N).";

@@ -155,6 +155,12 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   scenario.run.deadline_s = run.positive("deadline_s", 60.0);
   scenario.run.startup_timeout_s = run.positive("startup_timeout_s", 20.0);
   scenario.run.snapshot_every = run.integer("snapshot_every", 0, 0);
+  if (auto stop = run.optional_child("stop_when")) {
+    scenario.run.stop_unbalanced_force_ratio = stop->number("unbalanced_force_ratio", Bounds{0.0, 1.0, true});
+    if (!(*scenario.run.stop_unbalanced_force_ratio > 0.0)) stop->fail("unbalanced_force_ratio", "expected a ratio in (0, 1), e.g. 1e-3");
+    scenario.run.stop_min_exchanges = stop->integer("min_exchanges", 1, 1);
+    stop->finish();
+  }
   run.finish();
 
   scenario.output_directory = fs::path("results") / scenario.name;

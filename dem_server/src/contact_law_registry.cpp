@@ -74,6 +74,16 @@ const ContactLawInfo* find_contact_law(std::string_view keyword) noexcept {
   return nullptr;
 }
 
+bool ContactLawSetting::intact_force_from_history() const {
+  return std::visit(
+      [](const auto& l) {
+        using Law = std::decay_t<decltype(l)>;
+        if constexpr (requires { Law::intact_force_from_history; }) return Law::intact_force_from_history;
+        else return false;
+      },
+      law);
+}
+
 std::size_t ContactLawSetting::history_size() const {
   return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::history_size; }, law);
 }

@@ -7,6 +7,8 @@
 #include "dfc/common/version.hpp"
 #include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/measurements.hpp"
+#include "dfc/dem/particle_stress.hpp"
+#include "dfc/dem/region_config.hpp"
 
 namespace dfc::dem {
 
@@ -19,6 +21,43 @@ std::vector<double> flatten(std::span<const Vec3> v) {
   out.reserve(3 * v.size());
   for (const auto& x : v) out.insert(out.end(), {x.x, x.y, x.z});
   return out;
+}
+
+/// Every pair that was ever bonded: where (between the surfaces, on the
+/// centre line) and its state (bond_state.hpp: 1 intact, 2 damaged, 3 broken in
+/// tension, 4 broken in shear), for bond maps (seed figures of bond states).
+void append_bond_arrays(const Simulation& s, std::vector<protocol::Array>& arrays) {
+  const ParticleStore& p = s.particles();
+  const PairContacts& pairs = s.pair_contacts();
+  const PeriodicSpace space = s.periodic_cell() ? PeriodicSpace(*s.periodic_cell()) : PeriodicSpace();
+  std::vector<Vec3> where;
+  std::vector<std::int64_t> state;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const BondState b = bond_state(pairs.history.data() + k * pairs.stride);
+    if (b == BondState::none) continue;
+    const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+    const Vec3 d = space.branch(p.position[i], p.position[j]);
+    where.push_back(p.position[i] + (p.radius[i] / (p.radius[i] + p.radius[j])) * d);
+    state.push_back(std::int64_t(b));
+  }
+  const auto m = std::int64_t(state.size());
+  arrays.push_back(protocol::Array::from_f64("bond_position", {m, 3}, flatten(where)));
+  arrays.push_back(protocol::Array::from_i64("bond_state", {m}, state));
+}
+
+/// Stress profile of a generated body over horizontal slices one REV cell
+/// high (particle_stress.hpp), top first: depth below the surface, sigma_v, sigma_h.
+void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, std::vector<protocol::Array>& arrays) {
+  const auto [lo, hi] = region_bounds(pcrm.region);
+  const int slices = std::max(1, int(std::lround((hi.z - lo.z) / pcrm.rev.cell.length().z)));
+  const SliceProfile profile = slice_profile(s, pcrm.region, slices);
+  std::vector<double> depth;
+  for (const double z : profile.z) depth.push_back(pcrm.profile.surface_z - z);
+  const auto k = std::int64_t(depth.size());
+  arrays.push_back(protocol::Array::from_f64("profile_depth_m", {k}, depth));
+  arrays.push_back(protocol::Array::from_f64("profile_sigma_v_pa", {k}, profile.sigma_v));
+  arrays.push_back(protocol::Array::from_f64("profile_sigma_h_pa", {k}, profile.sigma_h));
+  arrays.push_back(protocol::Array::from_f64("profile_porosity", {k}, profile.porosity));
 }
 
 }  // namespace
@@ -56,6 +95,21 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   if (config_.periodic) {
     cell_servo_ = make_servo(config_.periodic->loading, config_.periodic->servo_gain, model_.max_strain_rate);
     cell_reference_length_ = sim().periodic_cell()->length();
+  }
+  if (const auto& gen = model_.generation) {
+    info["generation"] = {{"rev_particles", gen->rev.spheres.size()},
+                          {"rev_bonds", gen->rev.bonds},
+                          {"rev_porosity", gen->rev.porosity},
+                          {"rev_stress_pa", to_json(gen->rev.stress)},
+                          {"rev_steps", gen->rev.steps},
+                          {"copies", gen->body.copies},
+                          {"unit_weight_n_m3", gen->profile.unit_weight},
+                          {"k0", gen->profile.k0},
+                          {"surface_z_m", gen->profile.surface_z},
+                          {"surcharge_pa", gen->profile.surcharge},
+                          {"scaled_bonds", gen->scaling.scaled_bonds},
+                          {"lambda_min", gen->scaling.lambda_min},
+                          {"lambda_max", gen->scaling.lambda_max}};
   }
   if (const auto& prep = model_.preparation) {
     nlohmann::json p = {{"consolidated", prep->consolidated},
@@ -111,6 +165,16 @@ void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
     wall = make_wall("interface", std::move(wall_mesh), WallMotion::coupling, config_.wall_contact);
   } catch (const UserError& e) {
     throw ProtocolError(ErrorCode::bad_array, e.what());
+  }
+  // A generated body (generator "pcrm") is trimmed to the region's circle or
+  // box; the continuum's facets lie inside it (a polygon inscribed in the
+  // cavity), so spheres they cut are removed now, before the first step, by
+  // the same rule as the rigid walls (docs/dem_generation.md §2).
+  if (const auto& pcrm = config_.particles.pcrm; pcrm && s.step_count() == 0) {
+    const ParticleStore& p = s.particles();
+    const double fraction = std::max(pcrm->protrusion_fraction, wall_contact_overlap_fraction);
+    generation_removed_by_interface_ +=
+        s.remove_particles_before_start([&](std::size_t i) { return cut_by_wall(p.position[i], p.radius[i], wall, fraction); });
   }
   if (interface_wall_) s.replace_wall(*interface_wall_, std::move(wall));
   else interface_wall_ = s.add_wall(std::move(wall));
@@ -299,6 +363,14 @@ std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
   arrays.push_back(protocol::Array::from_f64("particle_radius", {n}, p.radius));
   arrays.push_back(protocol::Array::from_f64("particle_velocity", {n, 3}, flatten(p.velocity)));
   arrays.push_back(protocol::Array::from_i64("particle_id", {n}, p.id));
+  // Per-particle Love–Weber stress (particle_stress.hpp): stress profiles and
+  // maps come from the file; ParaView shows it as a Tensor6 on the particles.
+  std::vector<double> stress;
+  stress.reserve(std::size_t(6 * n));
+  for (const Stress6& v : particle_stress(s)) stress.insert(stress.end(), v.begin(), v.end());
+  arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {n, 6}, stress));
+  if (s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
+  if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, arrays);
   if (!s.walls().empty()) {
     std::vector<Vec3> vertices;
     std::vector<std::int64_t> facets;

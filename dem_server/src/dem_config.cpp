@@ -9,6 +9,7 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/region_config.hpp"
 #include "dfc/dem/ucs_platens.hpp"
 
 namespace dfc::dem {
@@ -18,39 +19,6 @@ namespace {
 constexpr double inf = std::numeric_limits<double>::infinity();
 
 Vec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
-
-std::array<double, 2> read_xy(ConfigReader& cfg, std::string_view key) {
-  if (!cfg.has(key)) {
-    cfg.accept(key);
-    return {0.0, 0.0};
-  }
-  const auto v = cfg.numbers(key);
-  if (v.size() != 2) cfg.fail(key, "expected an array of 2 numbers [x, y]");
-  return {v[0], v[1]};
-}
-
-BedRegion read_region(ConfigReader cfg) {
-  BedRegion region;
-  const std::string type = cfg.choice("type", {"box", "cylinder"});
-  if (type == "box") {
-    region.shape = BedRegion::Shape::box;
-    region.min = to_vec3(cfg.vec3("min_m"));
-    region.max = to_vec3(cfg.vec3("max_m"));
-    if (!(region.max.x > region.min.x && region.max.y > region.min.y && region.max.z > region.min.z))
-      cfg.fail("max_m", "every component must exceed the one of min_m");
-  } else {
-    region.shape = BedRegion::Shape::cylinder;
-    const auto axis = read_xy(cfg, "axis_xy_m");
-    region.axis_x = axis[0];
-    region.axis_y = axis[1];
-    region.radius = cfg.positive("radius_m");
-    region.z_min = cfg.number("z_min_m");
-    region.z_max = cfg.number("z_max_m");
-    if (!(region.z_max > region.z_min)) cfg.fail("z_max_m", "must exceed z_min_m");
-  }
-  cfg.finish();
-  return region;
-}
 
 /// Upscaling by S multiplies every generated radius by S and applies each
 /// law's declared rule (contact_law_registry.hpp, upscale()).
@@ -68,7 +36,7 @@ double read_scale_factor(ConfigReader& section) {
 
 ParticleConfig read_particles(ConfigReader cfg, double scale_factor) {
   ParticleConfig p;
-  p.generator = cfg.choice("generator", {"lattice", "list", "radius_expansion"});
+  p.generator = cfg.choice("generator", {"lattice", "list", "radius_expansion", "pcrm"});
   p.density = cfg.positive("density_kg_m3");
   if (p.generator == "lattice") {
     p.lattice.radius_min = scale_factor * cfg.positive("radius_min_m");
@@ -81,6 +49,8 @@ ParticleConfig read_particles(ConfigReader cfg, double scale_factor) {
     p.lattice.region = read_region(cfg.child("region"));
     p.spheres = generate_lattice_bed(p.lattice);
     if (p.spheres.empty()) cfg.fail("region", "no sphere fits: the region must be at least 2 radius_max_m x spacing_factor wide in every direction");
+  } else if (p.generator == "pcrm") {
+    p.pcrm = read_pcrm(cfg, scale_factor, p.density);
   } else if (p.generator == "radius_expansion") {
     p.expansion = read_radius_expansion(cfg);  // placed once the periodic cell is known (parse_dem_config)
     p.expansion.radius_min *= scale_factor;    // the cell stays: upscaling means fewer, larger spheres
@@ -421,13 +391,14 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
     neighbour->finish();
   }
   if (auto periodic = cfg.optional_child("periodic")) {
+    if (c.particles.pcrm) periodic->fail("min_m", "generator \"pcrm\" prepares its own periodic REV (particles.rev) and fills particles.region; remove \"periodic\"");
     const std::string path = periodic->path().empty() ? "" : periodic->path() + ".";
     c.periodic = read_periodic_config(std::move(*periodic));
     read_periodic_particles(c, path);
   } else {
     cfg.accept("periodic");
   }
-  const auto box = bounding_box(c.particles.spheres);
+  const auto box = c.particles.pcrm ? region_bounds(c.particles.pcrm->region) : bounding_box(c.particles.spheres);
   if (cfg.has("walls")) {
     std::set<std::string> names;
     auto walls = cfg.children("walls");
@@ -447,7 +418,7 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
 std::string dem_config_help() {
   return R"((SI units; unknown keys are errors)
   particles       (required) the spheres
-    generator       "lattice" | "list" | "radius_expansion" (needs "periodic" or "triaxial")
+    generator       "lattice" | "list" | "radius_expansion" (needs "periodic" or "triaxial") | "pcrm"
     density_kg_m3   particle density (required)
     lattice: radius_min_m, radius_max_m (required), spacing_factor (1.05: lattice pitch / 2 radius_max_m),
              arrangement ("cubic" | "fcc": close-packed layers, a denser start that settles faster),
@@ -460,7 +431,7 @@ std::string dem_config_help() {
              multiplier (1.6: final/initial radius), stages (10), relax_steps (1000 cycles after each stage),
              seed (1); spheres are placed at random without overlap at radius/multiplier in the periodic cell
              (or the box of the triaxial walls)
-  upscaling       {"scale_factor": S} particle upscaling (default S = 1): every generated radius is
+)" + pcrm_help() + R"(  upscaling       {"scale_factor": S} particle upscaling (default S = 1): every generated radius is
                   multiplied by S and every contact-law parameter follows its law's declared rule (value x
                   S^exponent, see "upscaling by S" below); the domain, walls and strain rates stay as given
   contact         (required) particle-particle law: {"law": keyword (default "linear"), parameters...}

@@ -11,19 +11,6 @@ namespace dfc::dem {
 
 namespace {
 
-/// A sphere that overlaps a wall by at most this fraction of its radius is in
-/// contact with it, not cut by it: a packing settled against a wall (e.g. the
-/// peer benchmark's, whose bottom layer rests up to 31 nm, 6e-5 R, into its
-/// floor) keeps its bottom layer and its initial contact forces.
-constexpr double wall_contact_overlap_fraction = 1e-3;
-
-bool overlaps_wall(const GeneratedSphere& s, const Wall& wall) {
-  const double cut_distance = s.radius * (1.0 - wall_contact_overlap_fraction);
-  for (const auto& f : wall.facets)
-    if (distance_to_triangle(s.centre, wall.vertices[f[0]], wall.vertices[f[1]], wall.vertices[f[2]]) < cut_distance) return true;
-  return false;
-}
-
 /// A sphere whose centre lies inside the (closed) pile: it would be trapped
 /// inside the pile and load its tip from within, so it is removed like one
 /// cut by a wall. The polygonal pile is inscribed in its radius, so testing
@@ -44,48 +31,10 @@ double critical_step(const ParticleStore& particles, const DemConfig& c, const s
   return critical_timestep(particles, laws);
 }
 
-}  // namespace
-
-TriaxialControl triaxial_confinement(const TriaxialConfig& config, double max_strain_rate) {
-  return {.confining_stress = config.confining_stress, .gain = config.servo_gain, .max_strain_rate = max_strain_rate, .platen_speed = std::nullopt};
-}
-
-TriaxialControl triaxial_shearing(const TriaxialConfig& config, double max_strain_rate, double initial_height) {
-  TriaxialControl control = triaxial_confinement(config, max_strain_rate);
-  control.platen_speed = 0.5 * config.strain_rate * initial_height;  // dH/dt = -rate H0, the centre stays put
-  return control;
-}
-
-DemModel build_model(const DemConfig& c) {
-  DemModel model;
-  // A prepared sample is bonded after its preparation (PFC order), not at the first rebuild.
-  const bool prepared = (c.periodic && (c.particles.generator == "radius_expansion" || c.periodic->consolidation)) || c.triaxial;
-  model.simulation = std::make_unique<Simulation>(SimulationSettings{.particle_law = c.contact,
-                                                                     .gravity = c.gravity,
-                                                                     .local_damping = c.local_damping,
-                                                                     .skin = c.skin,
-                                                                     .threads = c.threads,
-                                                                     .install_bonds_at_start = !prepared});
+/// Steps 2-4 of build_model after the particles: the cell, the time step
+/// and the preparation stages.
+DemModel finish_model(DemModel& model, const DemConfig& c, bool prepared) {
   Simulation& sim = *model.simulation;
-
-  // 1. Rigid walls and the pile.
-  for (const auto& w : c.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
-  if (c.pile)
-    model.pile_wall = sim.add_wall(make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
-                                             c.pile->velocity, c.pile->start_step));
-
-  // 2. Particles; a generated sphere cut by a rigid wall would start with a huge overlap.
-  for (std::size_t k = 0; k < c.particles.spheres.size(); ++k) {
-    const GeneratedSphere& s = c.particles.spheres[k];
-    bool cut = false;
-    for (const auto& wall : sim.walls()) cut = cut || overlaps_wall(s, wall);
-    cut = cut || (c.pile && inside_pile(s, c.pile->geometry));
-    if (cut) {
-      ++model.removed_particles;
-      continue;
-    }
-    sim.add_sphere(std::int64_t(k), s.centre, s.radius, c.particles.density);
-  }
   if (sim.particles().size() == 0) throw ConfigError("particles", "every sphere overlaps a wall or the pile; nothing is left to simulate");
   if (c.periodic) {
     try {
@@ -119,7 +68,7 @@ DemModel build_model(const DemConfig& c) {
     return given.value_or(1e-4 / model.dt);
   };
   model.max_strain_rate = c.periodic || c.triaxial ? cap() : 0.0;
-  if (!prepared) return model;
+  if (!prepared) return std::move(model);
   const double fraction = c.timestep.dt ? *c.timestep.dt / model.dt_critical : c.timestep.fraction_of_critical;
   if (c.particles.generator == "radius_expansion") {
     ParticleStore grown = sim.particles();
@@ -133,7 +82,81 @@ DemModel build_model(const DemConfig& c) {
   else
     model.preparation = confine_in_walls(sim, c.triaxial->walls, triaxial_confinement(*c.triaxial, model.max_strain_rate), c.triaxial->confinement,
                                          {c.particles.final_radius, c.particles.expansion, fraction}, model.dt);
-  return model;
+  return std::move(model);
+}
+
+/// Generator "pcrm": the generated body with its bonds' state, less the
+/// spheres a rigid wall or the pile cuts (and their pairs).
+void add_generated_body(DemModel& model, const DemConfig& c) {
+  Simulation& sim = *model.simulation;
+  PcrmConfig config = *c.particles.pcrm;
+  config.rev.fraction_of_critical = c.timestep.fraction_of_critical;
+  model.generation = generate_pcrm(config, sim.settings(), c.gravity);
+  const ReplicatedBody& body = model.generation->body;
+  for (std::size_t k = 0; k < body.spheres.size(); ++k) sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density);
+  sim.seed_pair_history(body.archive(), true);
+  const ParticleStore& p = sim.particles();
+  const double fraction = std::max(config.protrusion_fraction, wall_contact_overlap_fraction);
+  model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) {
+    const GeneratedSphere s{p.position[i], p.radius[i]};
+    bool cut = c.pile && inside_pile(s, c.pile->geometry);
+    for (const auto& wall : sim.walls()) cut = cut || cut_by_wall(s.centre, s.radius, wall, fraction);
+    return cut;
+  });
+  ReplicatedBody& held = model.generation->body;  // the simulation holds the body now
+  held.id = {};
+  held.spheres = {};
+  held.pairs = {};
+  held.rows = {};
+}
+
+}  // namespace
+
+TriaxialControl triaxial_confinement(const TriaxialConfig& config, double max_strain_rate) {
+  return {.confining_stress = config.confining_stress, .gain = config.servo_gain, .max_strain_rate = max_strain_rate, .platen_speed = std::nullopt};
+}
+
+TriaxialControl triaxial_shearing(const TriaxialConfig& config, double max_strain_rate, double initial_height) {
+  TriaxialControl control = triaxial_confinement(config, max_strain_rate);
+  control.platen_speed = 0.5 * config.strain_rate * initial_height;  // dH/dt = -rate H0, the centre stays put
+  return control;
+}
+
+DemModel build_model(const DemConfig& c) {
+  DemModel model;
+  // A prepared sample is bonded after its preparation (PFC order), not at the first rebuild.
+  const bool prepared = (c.periodic && (c.particles.generator == "radius_expansion" || c.periodic->consolidation)) || c.triaxial;
+  model.simulation = std::make_unique<Simulation>(SimulationSettings{.particle_law = c.contact,
+                                                                     .gravity = c.gravity,
+                                                                     .local_damping = c.local_damping,
+                                                                     .skin = c.skin,
+                                                                     .threads = c.threads,
+                                                                     .install_bonds_at_start = !prepared});
+  Simulation& sim = *model.simulation;
+
+  // 1. Rigid walls and the pile.
+  for (const auto& w : c.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
+  if (c.pile)
+    model.pile_wall = sim.add_wall(make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
+                                             c.pile->velocity, c.pile->start_step));
+
+  // 2. Particles; a generated sphere cut by a rigid wall would start with a huge overlap.
+  if (c.particles.pcrm) {
+    add_generated_body(model, c);
+    return finish_model(model, c, false);
+  }
+  for (std::size_t k = 0; k < c.particles.spheres.size(); ++k) {
+    const GeneratedSphere& s = c.particles.spheres[k];
+    bool cut = false;
+    for (const auto& wall : sim.walls()) cut = cut || cut_by_wall(s.centre, s.radius, wall);
+    cut = cut || (c.pile && inside_pile(s, c.pile->geometry));
+    if (cut) {
+      ++model.removed_particles;
+      continue;
+    }
+    sim.add_sphere(std::int64_t(k), s.centre, s.radius, c.particles.density);
+  }
+  return finish_model(model, c, prepared);
 }
 
 }  // namespace dfc::dem

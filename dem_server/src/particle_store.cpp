@@ -35,7 +35,7 @@ void ParticleStore::set_radius(std::size_t slot, double r) {
 namespace {
 template <class T>
 void permute_field(std::vector<T>& field, std::span<const std::uint32_t> new_to_old) {
-  std::vector<T> out(field.size());
+  std::vector<T> out(new_to_old.size());
   for (std::size_t k = 0; k < new_to_old.size(); ++k) out[k] = field[new_to_old[k]];
   field.swap(out);
 }
@@ -52,6 +52,8 @@ void ParticleStore::permute(std::span<const std::uint32_t> new_to_old) {
   permute_field(mass, new_to_old);
   permute_field(inertia, new_to_old);
 }
+
+void ParticleStore::retain(std::span<const std::uint32_t> kept_slots) { permute(kept_slots); }
 
 double sphere_volume_sum(const ParticleStore& particles) noexcept {
   double solid = 0.0;

@@ -26,6 +26,12 @@ CellLoading read_loading(ConfigReader& cfg, const std::vector<std::string>& mode
     l.stress = cfg.positive("stress_pa");
     l.axis = read_axis(cfg, "axis");
   }
+  if (mode == "anisotropic") {
+    l.mode = CellLoading::Mode::anisotropic;
+    l.stress = cfg.positive("stress_pa");
+    l.axis = read_axis(cfg, "axis");
+    l.lateral_ratio = cfg.positive("lateral_ratio");
+  }
   if (mode == "triaxial") {
     l.mode = CellLoading::Mode::triaxial;
     l.stress = cfg.number("stress_pa", Bounds{0.0});  // 0: unconfined (UCS of an REV)
@@ -42,6 +48,13 @@ CellLoading read_loading(ConfigReader& cfg, const std::vector<std::string>& mode
 
 }  // namespace
 
+void read_servo(ConfigReader servo, PeriodicConfig& c) {
+  c.servo_gain = servo.number("gain", 0.5, Bounds{0.0, 1.0, true});
+  if (servo.has("max_strain_rate_per_s")) c.max_strain_rate = servo.positive("max_strain_rate_per_s");
+  else servo.accept("max_strain_rate_per_s");
+  servo.finish();
+}
+
 PeriodicConfig read_periodic_config(ConfigReader cfg) {
   PeriodicConfig c;
   const auto lo = cfg.vec3("min_m");
@@ -56,22 +69,17 @@ PeriodicConfig read_periodic_config(ConfigReader cfg) {
     c.cell.periodic[std::size_t(a - 'x')] = true;
   }
   if (!c.cell.any_periodic()) cfg.fail("axes", "name at least one periodic axis, e.g. \"xyz\"");
-  if (auto servo = cfg.optional_child("servo")) {
-    c.servo_gain = servo->number("gain", 0.5, Bounds{0.0, 1.0, true});
-    if (servo->has("max_strain_rate_per_s")) c.max_strain_rate = servo->positive("max_strain_rate_per_s");
-    else servo->accept("max_strain_rate_per_s");
-    servo->finish();
-  }
+  if (auto servo = cfg.optional_child("servo")) read_servo(std::move(*servo), c);
   if (auto cons = cfg.optional_child("consolidation")) {
     ConfigReader& r = *cons;
     ConsolidationSpec s;
-    s.loading = read_loading(r, {"isotropic", "k0"});
+    s.loading = read_loading(r, {"isotropic", "k0", "anisotropic"});
     static_cast<EquilibriumTarget&>(s) = read_equilibrium_target(r);
     r.finish();
     c.consolidation = s;
   }
   if (auto loading = cfg.optional_child("loading")) {
-    c.loading = read_loading(*loading, {"none", "isotropic", "k0", "triaxial", "strain_rate"});
+    c.loading = read_loading(*loading, {"none", "isotropic", "k0", "anisotropic", "triaxial", "strain_rate"});
     loading->finish();
   }
   cfg.finish();
@@ -109,6 +117,11 @@ CellServo make_servo(const CellLoading& l, double gain, double max_strain_rate) 
   switch (l.mode) {
     case CellLoading::Mode::isotropic: return CellServo::isotropic(l.stress, gain, max_strain_rate);
     case CellLoading::Mode::k0: return CellServo::k0(l.axis, l.stress, gain, max_strain_rate);
+    case CellLoading::Mode::anisotropic: {
+      CellServo s = CellServo::isotropic(l.lateral_ratio * l.stress, gain, max_strain_rate);
+      s.axes.at(l.axis).value = l.stress;
+      return s;
+    }
     case CellLoading::Mode::triaxial: return CellServo::triaxial(l.axis, l.axial_rate, l.stress, gain, max_strain_rate);
     case CellLoading::Mode::strain_rate: {
       CellServo s{.gain = gain, .max_strain_rate = max_strain_rate};
@@ -128,9 +141,10 @@ std::string periodic_config_help() {
                    "servo":{"gain":0.5 (fraction of the stress error removed per step for an affine response, (0,1]),
                             "max_strain_rate_per_s" (cap of a stress-controlled edge; default 1e-4 / dt)},
                    "consolidation" (preparation, before the coupled run; bonds are installed after it):
-                     {"mode":"isotropic"|"k0", "stress_pa" (p, or sigma_v on "axis":"z"), "tolerance":0.01 (relative
+                     {"mode":"isotropic"|"k0"|"anisotropic", "stress_pa" (p, or sigma_v on "axis":"z"),
+                      "lateral_ratio" (anisotropic: the two other edges held at lateral_ratio x stress_pa), "tolerance":0.01 (relative
                       stress error), "unbalanced_force_ratio":0.01, "max_steps":200000, "check_every":100},
-                   "loading" (during advance): {"mode":"none"|"isotropic"|"k0"|"triaxial"|"strain_rate",
+                   "loading" (during advance): {"mode":"none"|"isotropic"|"k0"|"anisotropic"|"triaxial"|"strain_rate",
                      "stress_pa" (p, sigma_v, or sigma_3 of triaxial: 0 = unconfined), "axis":"z" (k0, triaxial),
                      "axial_strain_rate_per_s" (triaxial: compression > 0), "strain_rate_per_s":[x,y,z] (strain_rate:
                      edge rates, extension positive)}}

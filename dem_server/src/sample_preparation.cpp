@@ -8,9 +8,6 @@
 
 namespace dfc::dem {
 
-namespace {
-
-/// Bonds within the bond gap, on the prepared packing (one step installs them).
 std::int64_t install_bonds(Simulation& sim, double dt) {
   if (!sim.settings().particle_law.bonded()) return 0;
   sim.install_bonds_now();
@@ -18,7 +15,24 @@ std::int64_t install_bonds(Simulation& sim, double dt) {
   return sim.bond_counts().intact;
 }
 
-}  // namespace
+Consolidation consolidate(Simulation& sim, const ConsolidationSpec& spec, double gain, double max_strain_rate, double dt,
+                          const std::string& key, const std::string& servo_key) {
+  const CellServo servo = make_servo(spec.loading, gain, max_strain_rate);
+  CellStress stress;
+  const EquilibriumRun run = run_to_equilibrium(sim, spec, [&] {
+    stress = servo_step(sim, servo, dt);
+    return servo.relative_error(stress);
+  });
+  sim.set_cell_strain_rate({});
+  if (!run.reached) {
+    std::ostringstream msg;
+    msg << key << " did not reach its target in " << spec.max_steps << " steps (relative stress error " << run.stress_error
+        << ", unbalanced force ratio " << measure(sim).unbalanced_force_ratio << "); raise " << key << ".max_steps or " << servo_key
+        << ".max_strain_rate_per_s, or loosen the tolerance";
+    throw SolverError(msg.str());
+  }
+  return {run.steps, run.stress_error, stress.diagonal()};
+}
 
 PreparationReport prepare_sample(Simulation& sim, const PeriodicConfig& config, std::span<const double> final_radius,
                                  const RadiusExpansionSpec& expansion, double fraction_of_critical, double dt, double max_strain_rate) {
@@ -29,25 +43,12 @@ PreparationReport prepare_sample(Simulation& sim, const PeriodicConfig& config, 
   // 2. Servo consolidation: until the stress is within tolerance AND the
   // packing is in equilibrium, checked every check_every steps.
   if (config.consolidation) {
-    const ConsolidationSpec& c = *config.consolidation;
-    const CellServo servo = make_servo(c.loading, config.servo_gain, max_strain_rate);
-    CellStress stress;
-    const EquilibriumRun run = run_to_equilibrium(sim, c, [&] {
-      stress = servo_step(sim, servo, dt);
-      return servo.relative_error(stress);
-    });
-    report.consolidated = run.reached;
-    report.consolidation_steps = run.steps;
-    report.stress_error = run.stress_error;
-    sim.set_cell_strain_rate({});
-    if (!report.consolidated) {
-      std::ostringstream msg;
-      msg << "periodic.consolidation did not reach its target in " << c.max_steps << " steps (relative stress error " << report.stress_error
-          << ", unbalanced force ratio " << measure(sim).unbalanced_force_ratio
-          << "); raise periodic.consolidation.max_steps or periodic.servo.max_strain_rate_per_s, or loosen the tolerance";
-      throw SolverError(msg.str());
-    }
-    report.stress = stress.diagonal();
+    const Consolidation done = consolidate(sim, *config.consolidation, config.servo_gain, max_strain_rate, dt, "periodic.consolidation",
+                                           "periodic.servo");
+    report.consolidated = true;
+    report.consolidation_steps = done.steps;
+    report.stress_error = done.stress_error;
+    report.stress = done.stress;
   }
 
   report.bonds_installed = install_bonds(sim, dt);

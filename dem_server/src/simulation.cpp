@@ -74,6 +74,38 @@ void Simulation::install_bonds_now() noexcept {
   stale_ = true;
 }
 
+void Simulation::seed_pair_history(HistoryArchive archive, bool bonds_installed) {
+  if (archive.stride() != settings_.particle_law.history_size())
+    throw UserError("seeded pair history has " + std::to_string(archive.stride()) + " columns but the particle law keeps " +
+                    std::to_string(settings_.particle_law.history_size()));
+  seeded_pairs_ = std::move(archive);
+  bonds_installed_ = bonds_installed_ || bonds_installed;
+  stale_ = true;
+}
+
+std::size_t Simulation::remove_particles_before_start(const std::function<bool(std::size_t slot)>& remove) {
+  if (step_ != 0) throw UserError("particles can only be removed before the first step");
+  std::vector<std::uint32_t> kept;
+  std::unordered_set<std::int64_t> removed;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    if (remove(i)) removed.insert(particles_.id[i]);
+    else kept.push_back(std::uint32_t(i));
+  }
+  if (removed.empty()) return 0;
+  const HistoryArchive before = seeded_pairs_ ? std::move(*seeded_pairs_) : archive_history(pairs_, particles_);
+  HistoryArchive after(before.stride());
+  for (std::size_t k = 0; k < before.size(); ++k)
+    if (!removed.contains(before.key(k)[0]) && !removed.contains(before.key(k)[1])) after.add(before.key(k), before.row(k));
+  after.seal();
+  seeded_pairs_ = std::move(after);
+  particles_.retain(kept);
+  for (const std::int64_t id : removed) ids_.erase(id);
+  pairs_ = PairContacts{};
+  for (auto& w : wall_contacts_) w = WallContacts{};
+  stale_ = true;
+  return removed.size();
+}
+
 void Simulation::set_periodic_cell(const PeriodicCell& cell) {
   const Vec3 l = cell.length();
   if (!(l.x > 0.0 && l.y > 0.0 && l.z > 0.0)) throw UserError("the periodic cell needs hi > lo on every axis");
@@ -109,7 +141,8 @@ void Simulation::rebuild() {
     for (auto& x : particles_.position) x = cell_->wrap(x);  // history is keyed by ids: wrapping keeps it
 
   // 1. Keep the history of current contacts under stable keys.
-  const HistoryArchive pair_archive = archive_history(pairs_, particles_);
+  const HistoryArchive pair_archive = seeded_pairs_ ? std::move(*seeded_pairs_) : archive_history(pairs_, particles_);
+  seeded_pairs_.reset();
   std::vector<HistoryArchive> wall_archives;
   for (const auto& wc : wall_contacts_) wall_archives.push_back(archive_history(wc, particles_));
 

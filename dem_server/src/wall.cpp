@@ -35,4 +35,11 @@ Wall make_wall(std::string name, WallMesh mesh, WallMotion motion, ContactLawSet
   return wall;
 }
 
+bool cut_by_wall(const Vec3& centre, double radius, const Wall& wall, double fraction) {
+  const double cut_distance = radius * (1.0 - fraction);
+  for (const auto& f : wall.facets)
+    if (distance_to_triangle(centre, wall.vertices[f[0]], wall.vertices[f[1]], wall.vertices[f[2]]) < cut_distance) return true;
+  return false;
+}
+
 }  // namespace dfc::dem

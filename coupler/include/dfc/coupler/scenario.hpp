@@ -43,6 +43,11 @@ struct RunSpec {
   double deadline_s = 60.0;      ///< per request (SPEC.md §9)
   double startup_timeout_s = 20; ///< for a started server to print DFC-LISTENING
   std::int64_t snapshot_every = 0;  ///< exchanges between snapshots; 0: initial and final only
+  /// run.stop_when.unbalanced_force_ratio: the run ends at the first exchange
+  /// after which every participant's unbalanced_force_ratio monitor is at most
+  /// this (equilibrium); `exchanges` is then the most it may take.
+  std::optional<double> stop_unbalanced_force_ratio;
+  std::int64_t stop_min_exchanges = 1;  ///< run.stop_when.min_exchanges: never before this many
 };
 
 struct Scenario {

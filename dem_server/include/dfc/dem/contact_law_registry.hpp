@@ -53,6 +53,9 @@ struct ContactLawSetting {
   [[nodiscard]] StiffnessBound stiffness_bound(double radius_max) const;
   /// Bonded laws keep a BondState in history column 0 (bond_state.hpp).
   [[nodiscard]] bool bonded() const;
+  /// True for laws whose intact bond carries its whole force in stored history
+  /// (no overlap term): their bonded states can be scaled (stress_scaling.hpp).
+  [[nodiscard]] bool intact_force_from_history() const;
   /// m, bonding gap of a bonded law (pairs with surface gap <= it are bonded at start); 0 otherwise.
   [[nodiscard]] double bond_gap() const;
 };

@@ -125,6 +125,10 @@ class HistoryArchive {
   /// The row stored under `key`, or nullptr.
   [[nodiscard]] const double* find(Key key) const;
   [[nodiscard]] std::size_t size() const noexcept { return keys_.size(); }
+  [[nodiscard]] std::size_t stride() const noexcept { return stride_; }
+  /// Entry k in insertion order.
+  [[nodiscard]] const Key& key(std::size_t k) const noexcept { return keys_[k]; }
+  [[nodiscard]] const double* row(std::size_t k) const noexcept { return rows_.data() + k * stride_; }
   /// Keys, in increasing order, whose row is non-zero in `column` (e.g. the
   /// bond state: pairs that stay candidates however far apart they move).
   [[nodiscard]] std::vector<Key> keys_with_nonzero(std::size_t column) const;

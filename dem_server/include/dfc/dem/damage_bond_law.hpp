@@ -58,6 +58,9 @@ struct DamageBondLaw {
   static constexpr bool has_couple = true;
   static constexpr bool acts_across_gap = true;
   static constexpr bool bonded = true;
+  /// While intact the force is (1-D) k A (u - u^p) from stored displacements
+  /// alone (the linear contact is off): scaling them scales the load (stress_scaling.hpp).
+  static constexpr bool intact_force_from_history = true;
   static constexpr double breakage_damage = 0.99;  ///< reference §3.6
 
   double emod = 0.0;                  ///< Pa, E* (linear contact)

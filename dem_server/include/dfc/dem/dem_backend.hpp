@@ -60,6 +60,7 @@ class DemBackend final : public protocol::SolverBackend {
   DemConfig config_;
   DemModel model_;
   std::optional<std::size_t> interface_wall_;
+  std::size_t generation_removed_by_interface_ = 0;  ///< generated spheres the coupling wall cut (set_interface)
   std::optional<PlatenAxis> ucs_axis_;        ///< with a "ucs" section: the platens at configure
   std::optional<CellServo> cell_servo_;       ///< with a "periodic" cell: its loading
   struct TriaxialRun {

@@ -19,6 +19,7 @@ struct DemModel {
   std::size_t removed_particles = 0;     ///< generated spheres dropped because a wall cut them (overlap > 1e-3 R) or they were inside the pile
   std::optional<PreparationReport> preparation;  ///< periodic cell with radius expansion or consolidation
   double max_strain_rate = 0.0;          ///< 1/s, the servo's cap (periodic cell, triaxial walls)
+  std::optional<GeneratedBody> generation;  ///< generator "pcrm": the REV, the replication and the stress scaling
 };
 
 /// The servo of a triaxial section's confinement stage: every wall at sigma_3.

@@ -37,6 +37,8 @@ struct ParticleStore {
 
   /// Reorders every field: new slot k takes old slot new_to_old[k].
   void permute(std::span<const std::uint32_t> new_to_old);
+  /// Keeps only `kept_slots` (increasing), in that order; the others are removed.
+  void retain(std::span<const std::uint32_t> kept_slots);
 };
 
 /// m3, sum of the sphere volumes 4/3 pi r^3 (overlaps not subtracted: PFC's

@@ -17,10 +17,11 @@ namespace dfc::dem {
 /// How the cell is driven: during preparation ("consolidation") and during the
 /// coupled advance ("loading").
 struct CellLoading {
-  enum class Mode { none, isotropic, k0, triaxial, strain_rate };
+  enum class Mode { none, isotropic, k0, anisotropic, triaxial, strain_rate };
   Mode mode = Mode::none;
-  std::size_t axis = 2;     ///< k0 / triaxial: the vertical or axial edge (0 x, 1 y, 2 z)
-  double stress = 0.0;      ///< Pa, compression positive: p (isotropic), sigma_v (k0), sigma_3 (triaxial)
+  std::size_t axis = 2;     ///< k0 / anisotropic / triaxial: the vertical or axial edge (0 x, 1 y, 2 z)
+  double stress = 0.0;      ///< Pa, compression positive: p (isotropic), sigma_v (k0, anisotropic), sigma_3 (triaxial)
+  double lateral_ratio = 1.0;  ///< -, anisotropic: sigma_h / sigma_v held on the two other edges (a K0 state)
   double axial_rate = 0.0;  ///< 1/s, triaxial: compressive axial strain rate (> 0)
   Vec3 strain_rate;         ///< 1/s, strain_rate mode: edge rates, extension positive
 };
@@ -40,6 +41,9 @@ struct PeriodicConfig {
 
 /// Reads "periodic": min_m, max_m, axes, servo, consolidation, loading.
 [[nodiscard]] PeriodicConfig read_periodic_config(ConfigReader cfg);
+
+/// Reads a "servo" block ({"gain", "max_strain_rate_per_s"}) into `config` and finishes it.
+void read_servo(ConfigReader servo, PeriodicConfig& config);
 
 /// Reads the keys of generator "radius_expansion" inside "particles" (not
 /// density or generator, which the caller reads).

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/radius_expansion.hpp"
@@ -25,6 +26,23 @@ struct PreparationReport {
   double porosity = 0.0;               ///< at the end of preparation (of the cell, or of the walls' box)
   std::int64_t bonds_installed = 0;
 };
+
+/// Bonds within the bond gap on a prepared packing (one step of dt installs
+/// them, with zero load); returns the intact bonds (0 for an unbonded law).
+std::int64_t install_bonds(Simulation& simulation, double dt);
+
+struct Consolidation {
+  std::int64_t steps = 0;
+  double stress_error = 0.0;  ///< relative, at the last check
+  Vec3 stress;                ///< Pa, compression positive: the cell stress diagonal at the end
+};
+
+/// Servo-controls the periodic cell of `simulation` to `spec`'s loading until
+/// its target is met (equilibrium_target.hpp), then stops the cell. SolverError
+/// after spec.max_steps, naming the keys `key` (the consolidation block) and
+/// `servo_key` (its servo) to change.
+Consolidation consolidate(Simulation& simulation, const ConsolidationSpec& spec, double gain, double max_strain_rate, double dt,
+                          const std::string& key, const std::string& servo_key);
 
 /// Runs the stages on `simulation` (already holding the particles and the
 /// cell): expansion if `final_radius` is not empty, consolidation if the

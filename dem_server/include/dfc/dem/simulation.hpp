@@ -28,6 +28,7 @@
 // the wrap), and each step ends with the cell's affine deformation.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <unordered_set>
@@ -86,6 +87,17 @@ class Simulation {
   /// Bonded laws: bonds every pair within the bond gap at the next rebuild
   /// (forced now); no effect once bonds were installed.
   void install_bonds_now() noexcept;
+  /// Pair history (rows of particle_law's layout, keyed by particle ids) that
+  /// the next rebuild restores instead of the current lists' history: a body
+  /// built from a prepared one (PCRM replication, pcrm_replication.hpp) starts
+  /// with its contacts' and bonds' state. Bonded rows stay pairs at every
+  /// rebuild like installed bonds; with `bonds_installed` no gap-based
+  /// installation follows. Every key must name particles that exist.
+  void seed_pair_history(HistoryArchive archive, bool bonds_installed);
+  /// Removes the particles for which `remove(slot)` is true, with their pair
+  /// history, before the first step (UserError after it): e.g. generated
+  /// spheres that a coupling wall, known only later, cuts. Returns how many.
+  std::size_t remove_particles_before_start(const std::function<bool(std::size_t slot)>& remove);
   /// Makes the space periodic on cell.periodic's axes (and deformable).
   /// Throws UserError if a periodic edge is shorter than 2 (2 r_max + skin).
   void set_periodic_cell(const PeriodicCell& cell);
@@ -151,6 +163,8 @@ class Simulation {
   bool stale_ = true;
   bool bonds_installed_ = false;
   bool install_requested_ = false;
+
+  std::optional<HistoryArchive> seeded_pairs_;  ///< seed_pair_history(), consumed by the next rebuild
 
   std::optional<PeriodicCell> cell_;
   double affine_approach_ = 0.0;  ///< m, bound on how far the cell's deformation moved two partners together since the last rebuild

@@ -45,6 +45,9 @@ struct SoftBondLaw {
   static constexpr bool has_couple = true;
   static constexpr bool acts_across_gap = true;
   static constexpr bool bonded = true;
+  /// While intact the force and couple are the stored BondLoad alone (no
+  /// overlap term): scaling the stored columns scales the load (stress_scaling.hpp).
+  static constexpr bool intact_force_from_history = true;
 
   double emod = 0.0;                  ///< Pa, E*
   double kratio = 1.0;                ///< -, κ*

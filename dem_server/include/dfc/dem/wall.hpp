@@ -56,4 +56,14 @@ struct Wall {
 [[nodiscard]] Wall make_wall(std::string name, WallMesh mesh, WallMotion motion, ContactLawSetting law, Vec3 velocity = {},
                              std::int64_t start_step = 0);
 
+/// A sphere that overlaps a wall by at most this fraction of its radius is in
+/// contact with it, not cut by it: a packing settled against a wall (e.g. the
+/// peer benchmark's, whose bottom layer rests up to 31 nm, 6e-5 R, into its
+/// floor) keeps its bottom layer and its initial contact forces.
+inline constexpr double wall_contact_overlap_fraction = 1e-3;
+
+/// True if the sphere overlaps a facet of `wall` by more than `fraction` of its
+/// radius (generated spheres that would start with a large wall force).
+[[nodiscard]] bool cut_by_wall(const Vec3& centre, double radius, const Wall& wall, double fraction = wall_contact_overlap_fraction);
+
 }  // namespace dfc::dem

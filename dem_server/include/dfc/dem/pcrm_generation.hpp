@@ -1,0 +1,50 @@
+#pragma once
+// Generation of a DEM body at N g by periodic cell replication (particle
+// generator "pcrm", docs/dem_generation.md): an REV prepared at a reference
+// K0 stress (rev_preparation.hpp), tiled over the region (pcrm_replication.hpp)
+// and scaled to the self-weight stress field (stress_scaling.hpp). The body is
+// then equilibrated by the run itself (run.stop_when in the scenario).
+#include <optional>
+#include <string>
+
+#include "dfc/common/config_reader.hpp"
+#include "dfc/dem/pcrm_replication.hpp"
+#include "dfc/dem/rev_preparation.hpp"
+#include "dfc/dem/stress_profile.hpp"
+#include "dfc/dem/stress_scaling.hpp"
+
+namespace dfc::dem {
+
+struct PcrmConfig {
+  RevSpec rev;                              ///< density, radii and cell already upscaled
+  std::optional<double> reference_stress;   ///< Pa, sigma_v of the REV; default: sigma_v at the region's mid-depth
+  BedRegion region;
+  StressProfile profile;                    ///< unit_weight set at generation from the REV's porosity and |g|
+  double protrusion_fraction = 0.0;         ///< pcrm_replication.hpp
+};
+
+/// Reads the keys of generator "pcrm" inside "particles" ("rev", "region",
+/// "stress", "protrusion_fraction"; not density or generator). Radii and the
+/// REV cell are multiplied by `scale_factor`; the REV's timestep fraction is
+/// the model builder's to set.
+[[nodiscard]] PcrmConfig read_pcrm(ConfigReader& particles, double scale_factor, double density);
+
+/// The "pcrm" part of dem_config_help().
+[[nodiscard]] std::string pcrm_help();
+
+struct GeneratedBody {
+  ReplicatedBody body;
+  PreparedRev rev;            ///< without its history rows (copied into body)
+  StressProfile profile;      ///< with the unit weight used
+  double reference_stress = 0.0;  ///< Pa, the REV's measured sigma_v
+  StressScalingReport scaling;
+  double rev_seconds = 0.0, replication_seconds = 0.0;  ///< wall time of the stages (logged, not in results: not deterministic)
+};
+
+/// Prepares the REV with `settings`' law, replicates it and scales it to the
+/// profile for gravity `gravity` (m/s2, along -z, already N g). ConfigError
+/// naming "particles.<key>" for what the inputs cannot give (a law whose
+/// bonded state cannot be scaled, no gravity and no surcharge).
+[[nodiscard]] GeneratedBody generate_pcrm(const PcrmConfig& config, const SimulationSettings& settings, const Vec3& gravity);
+
+}  // namespace dfc::dem

@@ -1,0 +1,66 @@
+#include "dfc/dem/pcrm_generation.hpp"
+#include "dfc/dem/periodic_config.hpp"
+#include "dfc/dem/region_config.hpp"
+
+namespace dfc::dem {
+
+
+PcrmConfig read_pcrm(ConfigReader& particles, double scale_factor, double density) {
+  PcrmConfig c;
+  {
+    ConfigReader rev = particles.child("rev");
+    c.rev.particles = read_radius_expansion(rev);
+    c.rev.particles.radius_min *= scale_factor;
+    c.rev.particles.radius_max *= scale_factor;
+    const auto edge = rev.vec3("cell_m");
+    if (!(edge[0] > 0.0 && edge[1] > 0.0 && edge[2] > 0.0)) rev.fail("cell_m", "expected three positive edge lengths [lx, ly, lz] in m");
+    c.rev.cell.lo = {};
+    c.rev.cell.hi = {scale_factor * edge[0], scale_factor * edge[1], scale_factor * edge[2]};
+    c.rev.cell.periodic = {true, true, true};
+    if (rev.has("stress_pa")) c.reference_stress = rev.positive("stress_pa");
+    else rev.accept("stress_pa");
+    PeriodicConfig servo;
+    if (auto s = rev.optional_child("servo")) read_servo(std::move(*s), servo);
+    c.rev.servo_gain = servo.servo_gain;
+    c.rev.max_strain_rate = servo.max_strain_rate;
+    if (auto cons = rev.optional_child("consolidation")) {
+      static_cast<EquilibriumTarget&>(c.rev.consolidation) = read_equilibrium_target(*cons);
+      cons->finish();
+    }
+    rev.finish();
+  }
+  c.rev.density = density;
+  c.region = read_region(particles.child("region"));
+  {
+    ConfigReader stress = particles.child("stress");
+    c.profile.k0 = stress.positive("k0");
+    c.profile.surface_z = stress.number("surface_z_m", c.region.shape == BedRegion::Shape::box ? c.region.max.z : c.region.z_max);
+    c.profile.surcharge = stress.number("surcharge_pa", 0.0, Bounds{0.0});
+    stress.finish();
+  }
+  c.protrusion_fraction = particles.number("protrusion_fraction", 0.0, Bounds{0.0, 0.5});
+  return c;
+}
+
+std::string pcrm_help() {
+  return R"(    pcrm (docs/dem_generation.md): periodic cell replication at N g. An REV is prepared (radius expansion,
+             servo to sigma_ref on z and K0 sigma_ref on x, y, bonds, the servo again with the bonds), tiled over
+             "region" with its contacts and bonds (across the cell faces too), trimmed to the region and its
+             bonds scaled to sigma_v(z) = rho_s (1 - n) |g| (surface_z_m - z) + surcharge_pa, sigma_h = K0 sigma_v.
+             rev (required): radius_min_m, radius_max_m, porosity, multiplier, stages, relax_steps, seed (as
+                   radius_expansion), "cell_m":[lx, ly, lz] (required; at S = 1: upscaling multiplies radii and
+                   cell by S, so the REV keeps its sphere count), "stress_pa" (sigma_ref on z; default sigma_v at
+                   the region's mid-depth), "servo":{"gain":0.5, "max_strain_rate_per_s"},
+                   "consolidation":{"tolerance":0.01, "unbalanced_force_ratio":0.01, "max_steps":200000,
+                   "check_every":100} (both servo stages)
+             region (required): {"type":"cylinder", "radius_m", "z_min_m", "z_max_m", "axis_xy_m":[0,0]} or
+                   {"type":"box", "min_m", "max_m"}
+             stress (required): {"k0" (sigma_h / sigma_v), "surface_z_m" (default: top of the region),
+                   "surcharge_pa":0}
+             protrusion_fraction (0, at most 0.5): a sphere may stick out of the region (and later out of the
+                   coupling wall) by this fraction of its radius; 0 keeps whole spheres only
+             needs a law whose intact bond keeps its force in history ("soft_bond" or "damage_bond")
+)";
+}
+
+}  // namespace dfc::dem

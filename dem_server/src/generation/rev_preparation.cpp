@@ -1,0 +1,86 @@
+#include "dfc/dem/rev_preparation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dfc/dem/cell_stress.hpp"
+#include "dfc/dem/sample_preparation.hpp"
+#include "dfc/dem/timestep.hpp"
+
+namespace dfc::dem {
+
+namespace {
+
+/// s, critical step of the packing once every sphere has its final radius.
+double grown_critical_step(const Simulation& sim, const std::vector<double>& final_radius) {
+  ParticleStore grown = sim.particles();
+  for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, final_radius[std::size_t(grown.id[i])]);
+  double r_max = 0.0;
+  for (const double r : final_radius) r_max = std::max(r_max, r);
+  const std::vector<StiffnessBound> laws{sim.settings().particle_law.stiffness_bound(r_max)};
+  return critical_timestep(grown, laws);
+}
+
+/// The pairs with a history, their images across the cell faces, and the rows.
+void collect_pairs(const Simulation& sim, PreparedRev& rev) {
+  const PairContacts& pairs = sim.pair_contacts();
+  const ParticleStore& p = sim.particles();
+  const PeriodicSpace space(rev.cell);
+  const Vec3 l = rev.cell.length();
+  rev.stride = pairs.stride;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const double* row = pairs.history.data() + k * pairs.stride;
+    if (std::all_of(row, row + pairs.stride, [](double v) { return v == 0.0; })) continue;
+    const std::uint32_t i = pairs.first[k], j = pairs.second[k];
+    const Vec3 xi = rev.cell.wrap(p.position[i]), xj = rev.cell.wrap(p.position[j]);
+    const Vec3 shift = xi + space.branch(xi, xj) - xj;  // whole cell lengths
+    rev.pairs.push_back({std::uint32_t(p.id[i]), std::uint32_t(p.id[j]),
+                         {int(std::lround(shift.x / l.x)), int(std::lround(shift.y / l.y)), int(std::lround(shift.z / l.z))}});
+    rev.rows.insert(rev.rows.end(), row, row + pairs.stride);
+  }
+}
+
+}  // namespace
+
+PreparedRev prepare_rev(const RevSpec& spec, SimulationSettings settings, const std::string& key) {
+  settings.gravity = {};
+  settings.install_bonds_at_start = false;
+  Simulation sim(std::move(settings));
+  ExpansionPacking packing = place_for_radius_expansion(spec.particles, spec.cell);
+  for (std::size_t k = 0; k < packing.spheres.size(); ++k)
+    sim.add_sphere(std::int64_t(k), packing.spheres[k].centre, packing.spheres[k].radius, spec.density);
+  sim.set_periodic_cell(spec.cell);
+
+  PreparedRev rev;
+  rev.dt = spec.fraction_of_critical * grown_critical_step(sim, packing.final_radius);
+  const double max_rate = spec.max_strain_rate.value_or(1e-4 / rev.dt);
+  const std::string servo_key = key + ".servo";
+  // 1-2: unbonded, PFC's order (Potyondy & Cundall 2004 §3.1), isotropic at
+  // the mean stress of sigma_ref: a loose frictional packing held at a
+  // deviatoric K0 state creeps and never settles to the servo's tolerance.
+  const ExpansionReport expansion = expand_radii(sim, packing.final_radius, spec.particles, spec.fraction_of_critical, spec.cell.volume());
+  ConsolidationSpec isotropic = spec.consolidation;
+  const CellLoading& target = spec.consolidation.loading;
+  isotropic.loading = {.mode = CellLoading::Mode::isotropic, .axis = target.axis,
+                       .stress = target.stress * (1.0 + 2.0 * target.lateral_ratio) / 3.0, .lateral_ratio = 1.0, .axial_rate = 0.0, .strain_rate = {}};
+  const Consolidation unbonded = consolidate(sim, isotropic, spec.servo_gain, max_rate, rev.dt, key + ".consolidation", servo_key);
+  // 3-4: bonded, then loaded to sigma_ref: the bonds carry the deviator.
+  install_bonds(sim, rev.dt);
+  const Consolidation bonded =
+      consolidate(sim, spec.consolidation, spec.servo_gain, max_rate, rev.dt, key + ".consolidation (bonded stage)", servo_key);
+  sim.step(rev.dt);  // complete contact outputs at the final cell
+
+  rev.cell = *sim.periodic_cell();
+  rev.cell.strain_rate = {};
+  const ParticleStore& p = sim.particles();
+  rev.spheres.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) rev.spheres[std::size_t(p.id[i])] = {rev.cell.wrap(p.position[i]), p.radius[i]};
+  collect_pairs(sim, rev);
+  rev.stress = measure_cell_stress(sim).diagonal();
+  rev.porosity = cell_porosity(p, rev.cell);
+  rev.bonds = sim.bond_counts().intact;
+  rev.steps = expansion.steps + unbonded.steps + bonded.steps + 2;
+  return rev;
+}
+
+}  // namespace dfc::dem
