@@ -5,6 +5,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/dem/boundary_seating.hpp"
 #include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
@@ -46,11 +47,12 @@ void append_bond_arrays(const Simulation& s, std::vector<protocol::Array>& array
 }
 
 /// Stress profile of a generated body over horizontal slices one REV cell
-/// high (particle_stress.hpp), top first: depth below the surface, sigma_v, sigma_h.
+/// high (particle_stress.hpp), top first: depth below the surface, sigma_v,
+/// sigma_h; the sides moved in by two largest diameters (the boundary layer).
 void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, std::vector<protocol::Array>& arrays) {
   const auto [lo, hi] = region_bounds(pcrm.region);
   const int slices = std::max(1, int(std::lround((hi.z - lo.z) / pcrm.rev.cell.length().z)));
-  const SliceProfile profile = slice_profile(s, pcrm.region, slices);
+  const SliceProfile profile = slice_profile(s, pcrm.region, slices, 4.0 * largest_radius(s.particles()));
   std::vector<double> depth;
   for (const double z : profile.z) depth.push_back(pcrm.profile.surface_z - z);
   const auto k = std::int64_t(depth.size());
@@ -175,6 +177,7 @@ void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
     const double fraction = std::max(pcrm->protrusion_fraction, wall_contact_overlap_fraction);
     generation_removed_by_interface_ +=
         s.remove_particles_before_start([&](std::size_t i) { return cut_by_wall(p.position[i], p.radius[i], wall, fraction); });
+    if (pcrm->seat) model_.generation->seated += seat_on_wall(s, wall, model_.generation->profile, face_areas(pcrm->region)).seated;
   }
   if (interface_wall_) s.replace_wall(*interface_wall_, std::move(wall));
   else interface_wall_ = s.add_wall(std::move(wall));

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/boundary_seating.hpp"
 #include "dfc/dem/timestep.hpp"
 #include "dfc/dem/triangle_geometry.hpp"
 
@@ -103,6 +104,8 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
     for (const auto& wall : sim.walls()) cut = cut || cut_by_wall(s.centre, s.radius, wall, fraction);
     return cut;
   });
+  if (config.seat)
+    for (const auto& wall : sim.walls()) model.generation->seated += seat_on_wall(sim, wall, model.generation->profile, face_areas(config.region)).seated;
   ReplicatedBody& held = model.generation->body;  // the simulation holds the body now
   held.id = {};
   held.spheres = {};

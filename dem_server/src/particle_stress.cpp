@@ -12,11 +12,11 @@ namespace {
 void add_moment(Stress6& s, const Vec3& f, const Vec3& r) {
   // -(f (x) r), symmetrised: compression positive.
   s[0] -= f.x * r.x;
-  s[1] -= f.y * r.y;
-  s[2] -= f.z * r.z;
-  s[3] -= 0.5 * (f.x * r.y + f.y * r.x);
+  s[1] -= 0.5 * (f.x * r.y + f.y * r.x);
+  s[2] -= 0.5 * (f.x * r.z + f.z * r.x);
+  s[3] -= f.y * r.y;
   s[4] -= 0.5 * (f.y * r.z + f.z * r.y);
-  s[5] -= 0.5 * (f.x * r.z + f.z * r.x);
+  s[5] -= f.z * r.z;
 }
 
 double sphere_volume(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; }
@@ -53,17 +53,29 @@ std::vector<Stress6> particle_stress(const Simulation& sim) {
   return out;
 }
 
-SliceProfile slice_profile(const Simulation& sim, const BedRegion& region, int slices) {
-  const auto [lo, hi] = region_bounds(region);
+SliceProfile slice_profile(const Simulation& sim, const BedRegion& region, int slices, double margin) {
+  BedRegion inner = region;
+  if (region.shape == BedRegion::Shape::box) {
+    inner.min = region.min + Vec3{margin, margin, 0.0};
+    inner.max = region.max - Vec3{margin, margin, 0.0};
+  } else {
+    inner.radius = region.radius - margin;
+  }
+  const auto [lo, hi] = region_bounds(inner);
   const double height = (hi.z - lo.z) / double(slices);
-  const double area = region.shape == BedRegion::Shape::box ? (hi.x - lo.x) * (hi.y - lo.y) : std::numbers::pi * region.radius * region.radius;
+  const double area = inner.shape == BedRegion::Shape::box ? (hi.x - lo.x) * (hi.y - lo.y) : std::numbers::pi * inner.radius * inner.radius;
+  if (!(area > 0.0)) return {};
   const std::vector<Stress6> stress = particle_stress(sim);
   const ParticleStore& p = sim.particles();
   std::vector<Stress6> moment(std::size_t(slices), Stress6{});
   std::vector<double> solid(std::size_t(slices), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double z = p.position[i].z;
+    const Vec3& x = p.position[i];
+    const double z = x.z;
     if (z < lo.z || z >= hi.z) continue;
+    const bool inside = inner.shape == BedRegion::Shape::box ? (x.x >= lo.x && x.x < hi.x && x.y >= lo.y && x.y < hi.y)
+                                                             : std::hypot(x.x - inner.axis_x, x.y - inner.axis_y) < inner.radius;
+    if (!inside) continue;
     const auto s = std::size_t(std::min(double(slices - 1), std::floor((hi.z - z) / height)));  // slice 0 at the top
     const double v = sphere_volume(p.radius[i]);
     for (std::size_t a = 0; a < 6; ++a) moment[s][a] += v * stress[i][a];
@@ -73,8 +85,8 @@ SliceProfile slice_profile(const Simulation& sim, const BedRegion& region, int s
   const double volume = area * height;
   for (std::size_t s = 0; s < std::size_t(slices); ++s) {
     out.z.push_back(hi.z - (double(s) + 0.5) * height);
-    out.sigma_v.push_back(moment[s][2] / volume);
-    out.sigma_h.push_back(0.5 * (moment[s][0] + moment[s][1]) / volume);
+    out.sigma_v.push_back(moment[s][5] / volume);
+    out.sigma_h.push_back(0.5 * (moment[s][0] + moment[s][3]) / volume);
     out.porosity.push_back(1.0 - solid[s] / volume);
   }
   return out;

@@ -39,6 +39,7 @@ PcrmConfig read_pcrm(ConfigReader& particles, double scale_factor, double densit
     stress.finish();
   }
   c.protrusion_fraction = particles.number("protrusion_fraction", 0.0, Bounds{0.0, 0.5});
+  c.seat = particles.boolean("seat_on_walls", true);
   return c;
 }
 
@@ -59,6 +60,8 @@ std::string pcrm_help() {
                    "surcharge_pa":0}
              protrusion_fraction (0, at most 0.5): a sphere may stick out of the region (and later out of the
                    coupling wall) by this fraction of its radius; 0 keeps whole spheres only
+             seat_on_walls (true): move each outermost sphere whose path is free onto the bottom and lateral faces
+                   (the floor and the coupling wall), with the overlap of its share of the face's stress
              needs a law whose intact bond keeps its force in history ("soft_bond" or "damage_bond")
 )";
 }

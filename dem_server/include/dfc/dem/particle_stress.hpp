@@ -20,7 +20,7 @@
 
 namespace dfc::dem {
 
-/// Voigt order xx, yy, zz, xy, yz, xz (ParaView's Tensor6), Pa, compression positive.
+/// Order xx, xy, xz, yy, yz, zz (XDMF's Tensor6, as the continuum's zone_stress), Pa, compression positive.
 using Stress6 = std::array<double, 6>;
 
 /// Per particle slot, from the last force evaluation; zeros before the first step
@@ -35,7 +35,9 @@ struct SliceProfile {
 };
 
 /// Love–Weber stress of the particles whose centres lie in each of `slices`
-/// equal horizontal slices of `region`.
-[[nodiscard]] SliceProfile slice_profile(const Simulation& simulation, const BedRegion& region, int slices);
+/// equal horizontal slices of `region`, its sides moved in by `margin` (m):
+/// the body's outermost layer, thinned by trimming and pressed by the walls,
+/// is left out so that the slices measure the body, not its boundary.
+[[nodiscard]] SliceProfile slice_profile(const Simulation& simulation, const BedRegion& region, int slices, double margin = 0.0);
 
 }  // namespace dfc::dem

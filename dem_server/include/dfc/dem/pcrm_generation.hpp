@@ -21,6 +21,7 @@ struct PcrmConfig {
   BedRegion region;
   StressProfile profile;                    ///< unit_weight set at generation from the REV's porosity and |g|
   double protrusion_fraction = 0.0;         ///< pcrm_replication.hpp
+  bool seat = true;                         ///< boundary_seating.hpp: seat the body on its walls (rigid and coupling)
 };
 
 /// Reads the keys of generator "pcrm" inside "particles" ("rev", "region",
@@ -38,6 +39,7 @@ struct GeneratedBody {
   StressProfile profile;      ///< with the unit weight used
   double reference_stress = 0.0;  ///< Pa, the REV's measured sigma_v
   StressScalingReport scaling;
+  std::size_t seated = 0;     ///< spheres moved onto a wall (boundary_seating.hpp), the coupling wall's included
   double rev_seconds = 0.0, replication_seconds = 0.0;  ///< wall time of the stages (logged, not in results: not deterministic)
 };
 
