@@ -9,7 +9,7 @@
 #   no_outside_references.sh REPO_ROOT
 root=${1:?usage: no_outside_references.sh REPO_ROOT}
 cd "$root" || exit 2
-pattern='DESIGN|\.\./shared|/work/shared|(?<!dfc/)reference/|\bseeds? 0[0-9]{2}\b|\b(dem|fdm)-physics\.md|coupling-and-zeromq|STYLE(\.md)? ?§|STYLE\.md'
+pattern='DESIGN|\.\./shared|/work/shared|(?<!dfc/)reference/|(?i:\bseeds? 0[0-9]{2}\b)|\b(dem|fdm)-physics\.md|coupling-and-zeromq|STYLE(\.md)? ?§|STYLE\.md'
 hits=$(grep -rnP "$pattern" \
   --include='*.cpp' --include='*.hpp' --include='*.h' --include='*.md' --include='*.py' \
   --include='*.txt' --include='*.json' --include='*.cmake' --include='*.cff' \
