@@ -11,7 +11,7 @@
 //
 // Unconfirmed details and the choices made (docs/fdm_models.md lists them):
 //  * M_g: the authors' open-source Kratos implementation has only associative flow in its
-//    code; Ciantia et al. 2024 says "M_f controls the shape of the yield surface while
+//    code; Ciantia et al. 2024 say "M_f controls the shape of the yield surface while
 //    M_g controls the plastic flow". g is the yield function with M_f replaced
 //    by M_g (the form §3.2 suggests), so g and f share the p-axis intercepts
 //    and the critical state (∂g/∂p = 0 at the ellipse top), and M_g only
