@@ -6,20 +6,14 @@ file written by the real ResultsWriter (tests/coupler/results_sample_main.cpp).
 
     test_dfc_results.py        (CTest: exit code 77 = skipped when numpy or h5py are missing)
 """
-import importlib.util
 import json
 import os
-import sys
 import tempfile
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, os.pardir, os.pardir, "python"))
+from dfc_test_support import require_modules
 
-MISSING = [m for m in ("numpy", "h5py") if importlib.util.find_spec(m) is None]
-if MISSING:
-    print(f"SKIPPED: python modules missing: {', '.join(MISSING)} (install python3-numpy python3-h5py)")
-    sys.exit(77)
+require_modules("numpy", "h5py")
 
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
@@ -164,27 +158,24 @@ class VariantsTest(unittest.TestCase):
     def tearDown(self):
         self.tmp.cleanup()
 
+    def open_variants(self, **kwargs):
+        runs = dfc_results.open_variants(self.dir, **kwargs)
+        for run in runs.values():
+            self.addCleanup(run.close)
+        return runs
+
     def test_variants_by_label(self):
-        runs = dfc_results.open_variants(self.dir)
-        try:
-            self.assertEqual(list(runs), ["S1", "S10", "S2"])
-            self.assertEqual(runs["S2"].name, "ucs_S2")
-            self.assertEqual(runs["S10"].series("dem_pile_force_n").values[1], 6.0)
-        finally:
-            for run in runs.values():
-                run.close()
+        runs = self.open_variants()
+        self.assertEqual(list(runs), ["S1", "S10", "S2"])
+        self.assertEqual(runs["S2"].name, "ucs_S2")
+        self.assertEqual(runs["S10"].series("dem_pile_force_n").values[1], 6.0)
 
     def test_variants_in_scenario_order(self):
         scenario = os.path.join(self.dir, "scenario.json")
         with open(scenario, "w") as f:
             json.dump({"variants": [{"label": "S1", "patch": {}}, {"label": "S2", "patch": {}},
                                     {"label": "S10", "patch": {}}]}, f)
-        runs = dfc_results.open_variants(self.dir, scenario=scenario)
-        try:
-            self.assertEqual(list(runs), ["S1", "S2", "S10"])
-        finally:
-            for run in runs.values():
-                run.close()
+        self.assertEqual(list(self.open_variants(scenario=scenario)), ["S1", "S2", "S10"])
 
     def test_variant_missing_from_folder(self):
         scenario = os.path.join(self.dir, "scenario.json")

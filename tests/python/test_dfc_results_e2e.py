@@ -6,20 +6,15 @@ package reads the time series with their units and the snapshots of both sides.
     test_dfc_results_e2e.py COUPLER SCENARIO.json OUT_DIR
         (CTest: exit code 77 = skipped when numpy or h5py are missing)
 """
-import importlib.util
 import os
 import shutil
 import subprocess
 import sys
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, os.pardir, os.pardir, "python"))
+from dfc_test_support import require_modules
 
-MISSING = [m for m in ("numpy", "h5py") if importlib.util.find_spec(m) is None]
-if MISSING:
-    print(f"SKIPPED: python modules missing: {', '.join(MISSING)} (install python3-numpy python3-h5py)")
-    sys.exit(77)
+require_modules("numpy", "h5py")
 
 import numpy as np  # noqa: E402
 
