@@ -6,7 +6,6 @@ package reads the time series with their units and the snapshots of both sides.
     test_dfc_results_e2e.py COUPLER SCENARIO.json OUT_DIR
         (CTest: exit code 77 = skipped when numpy or h5py are missing)
 """
-import os
 import shutil
 import subprocess
 import sys
