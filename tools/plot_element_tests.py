@@ -27,7 +27,7 @@ except ImportError as missing:  # pragma: no cover - depends on the machine
     sys.exit(f"plot_element_tests.py needs numpy and matplotlib: {missing}")
 
 TITLES = {"mohr_coulomb": "Mohr-Coulomb (E = 100 MPa, c = 20 kPa, phi = 30 deg, psi = 10 deg)",
-          "chalk_snw": "Structured Cam Clay, preset chalk_snw (seed 001 Table 2)"}
+          "chalk_snw": "Structured Cam Clay, preset chalk_snw (Ciantia et al. 2024 Table 2)"}
 
 
 def read(path):

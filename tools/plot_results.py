@@ -41,17 +41,17 @@ import argparse
 import os
 import sys
 
-# A writer that holds the HDF5 file lock would stop h5py from opening a run in
-# progress; reading without the lock avoids that. Must be set before h5py loads.
-os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
+# The reading of results files lives in python/dfc_results (one place for the layout).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "python"))
 
 try:
-    import h5py
     import matplotlib
 
     matplotlib.use("Agg")  # files only; no display needed
     import matplotlib.pyplot as plt
     import numpy as np
+
+    import dfc_results
 except ImportError as missing:  # pragma: no cover - depends on the machine
     # The Debian packages install for /usr/bin/python3; a python3 found first on
     # PATH (pyenv, venv) may not have them, so try that interpreter once.
@@ -66,29 +66,13 @@ SIDES = ("dem", "continuum")
 AXES = ("x", "y", "z")
 
 
-def read_series(path):
-    """All /timeseries columns as {name: (values, unit)}."""
-    series = {}
-    with h5py.File(path, "r") as f:
-        group = f.get("timeseries")
-        if group is None:
-            return series
-        for name, dataset in group.items():
-            if isinstance(dataset, h5py.Dataset) and dataset.ndim == 1:
-                unit = dataset.attrs.get("unit", "")
-                if isinstance(unit, bytes):
-                    unit = unit.decode("utf-8")
-                series[name] = (np.asarray(dataset[...], dtype=float), str(unit))
-    return series
-
-
 def column(series, *names):
     """Values of the first of `names` present with any finite value, or None.
     (The coupler records NaN where a quantity does not apply, e.g. interface
     forces in a single-participant run.)"""
     for name in names:
-        if name in series and np.isfinite(series[name][0]).any():
-            return series[name][0]
+        if name in series and np.isfinite(series[name].values).any():
+            return series[name].values
     return None
 
 
@@ -107,8 +91,8 @@ def ufr_columns(side):
 def time_axis(series):
     for name, label in (("time_s", "time [s]"), ("step", "step"), ("exchange", "exchange")):
         if name in series:
-            return series[name][0], label
-    length = max((len(values) for values, _ in series.values()), default=0)
+            return series[name].values, label
+    length = max((len(s.values) for s in series.values()), default=0)
     return np.arange(length, dtype=float), "row"
 
 
@@ -290,12 +274,12 @@ def run_label(path):
 
 
 def load(path):
-    if not os.path.isfile(path):
-        sys.exit(f"plot_results.py: no such file '{path}'")
+    """All time series of one results file, {name: dfc_results.Series}."""
     try:
-        return read_series(path)
-    except OSError as error:
-        sys.exit(f"plot_results.py: cannot read '{path}' as HDF5 ({error})")
+        with dfc_results.open_results(path) as results:
+            return results.all_series()
+    except dfc_results.ResultsError as error:
+        sys.exit(f"plot_results.py: {error}")
 
 
 def main(argv=None):

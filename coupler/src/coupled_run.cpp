@@ -248,7 +248,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     const bool coupled = dem != nullptr && continuum != nullptr;
     const milliseconds deadline = to_ms(scenario.run.deadline_s);
 
-    // Step 3: the interface mesh goes from the continuum to the DEM (DESIGN §4).
+    // Step 3: the interface mesh goes from the continuum to the DEM (docs/theory/coupling.md §2).
     protocol::InterfaceMesh interface;
     if (coupled) {
       try {
@@ -357,7 +357,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
         monitors["continuum"] = reply.body.value("monitors", nlohmann::json::object());
       }
 
-      // The interface forces must be equal and opposite (DESIGN §4): the reaction
+      // The interface forces must be equal and opposite (docs/theory/coupling.md §4): the reaction
       // the DEM computed on its particles against what the continuum applied.
       std::array<double, 3> on_dem{kNaN, kNaN, kNaN};
       std::array<double, 3> on_continuum{kNaN, kNaN, kNaN};

@@ -119,7 +119,7 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
     root.fail("name", "expected a non-empty name without '/', used for the results folder");
   scenario.description = root.string("description", "");
 
-  // Gravity: g · N along a unit direction (virtual centrifuge, DESIGN §1).
+  // Gravity: g · N along a unit direction (virtual centrifuge, docs/theory/upscaling_and_pcrm.md §5).
   if (auto gravity = root.optional_child("gravity")) {
     const double g = gravity->number("g_m_s2", 9.81, Bounds{0.0});
     scenario.g_level = gravity->number("g_level", 1.0, Bounds{0.0, 1e5, true});

@@ -19,7 +19,7 @@ std::vector<ContactLawInfo> build_registry() {
   table.push_back({
       .keyword = std::string(LinearLaw::keyword),
       .summary = "PFC linear model: no-tension normal spring, incremental shear spring with Coulomb slip, optional normal dashpot",
-      .reference = "Itasca PFC linear model; Cundall & Strack (1979); reference/dem-physics.md §2.3",
+      .reference = "Itasca PFC linear model; Cundall & Strack (1979); docs/theory/dem_contact_laws.md §2.3",
       .upscaling_rule = "k_n and k_s scale with S (stiffness ~ E* R, Thakur et al. 2015); friction and damping ratio stay fixed",
       .parameters = LinearLaw::parameter_specs(),
       .history = LinearLaw::history_columns(),
@@ -28,7 +28,7 @@ std::vector<ContactLawInfo> build_registry() {
   table.push_back({
       .keyword = std::string(LinearPbondLaw::keyword),
       .summary = "linear parallel bond: linear frictional contact plus a brittle elastic bond disc carrying force and moment",
-      .reference = "Potyondy & Cundall (2004) IJRMMS 41:1329; Itasca PFC linearpbond; reference/dem-physics.md §2",
+      .reference = "Potyondy & Cundall (2004) IJRMMS 41:1329; Itasca PFC linearpbond; docs/theory/dem_contact_laws.md §2",
       .upscaling_rule = "E*, Ebar*, stiffness ratios, lambda, beta and strengths stay fixed (stiffnesses follow R); bond_gap_m scales with S",
       .parameters = LinearPbondLaw::parameter_specs(),
       .history = LinearPbondLaw::history_columns(),
@@ -37,7 +37,7 @@ std::vector<ContactLawInfo> build_registry() {
   table.push_back({
       .keyword = std::string(SoftBondLaw::keyword),
       .summary = "soft bond: linear softening in tension (inferred form, docs/dem_bond_laws.md), brittle in shear, then linear frictional",
-      .reference = "Itasca PFC softbond; Ma & Huang (2018); reference/dem-physics.md §1 (equations inferred, §1.2)",
+      .reference = "Itasca PFC softbond; Ma & Huang (2018); docs/theory/dem_contact_laws.md §1 (equations inferred, §1.2)",
       .upscaling_rule = "E*, kappa*, lambda, beta, strengths, zeta and gamma stay fixed (stiffness follows R); bond_gap_m scales with S",
       .parameters = SoftBondLaw::parameter_specs(),
       .history = SoftBondLaw::history_columns(),
@@ -46,7 +46,7 @@ std::vector<ContactLawInfo> build_registry() {
   table.push_back({
       .keyword = std::string(DamageBondLaw::keyword),
       .summary = "Zheng-Ciantia damage-plasticity bond: N-V-M envelope, associated flow, damage D shrinking stiffness and capacities",
-      .reference = "Zheng & Ciantia (2025) RMRE doi 10.1007/s00603-025-04411-0; reference/dem-physics.md §3; seed 001 Eqs. 1-2",
+      .reference = "Zheng & Ciantia (2025) RMRE doi 10.1007/s00603-025-04411-0; docs/theory/dem_contact_laws.md §3; Ciantia et al. 2024 Eqs. 1-2",
       .upscaling_rule = "moduli, stiffness ratios, strengths and theta_c stay fixed; ucn_m, ucs_m and bond_gap_m scale with S (guide Eq. 5)",
       .parameters = DamageBondLaw::parameter_specs(),
       .history = DamageBondLaw::history_columns(),

@@ -10,7 +10,7 @@ std::vector<ParameterSpec> DamageBondLaw::parameter_specs() {
   constexpr double inf = std::numeric_limits<double>::infinity();
   const Bounds positive{0.0, inf, true};
   const Bounds non_negative{0.0, inf, false};
-  // Upscaling (guide Eq. 5, reference §3.7): moduli, stiffness ratios and
+  // Upscaling (guide Eq. 5, docs/theory/dem_contact_laws.md §3.7): moduli, stiffness ratios and
   // strengths and θ_c stay fixed; u_cn, u_cs and the bonding gap scale with S.
   return {
       {"emod_pa", "Pa", std::nullopt, "effective modulus E* of the linear contact, k_n = pi E* R_min^2/(R1+R2)", positive, 0.0},

@@ -8,7 +8,7 @@ namespace dfc::dem {
 
 namespace {
 
-constexpr double bending_exponent = 1.001;  // seed 001 Eq. 1: |M̆/M̃|^1.001
+constexpr double bending_exponent = 1.001;  // Ciantia et al. 2024 Eq. 1: |M̆/M̃|^1.001
 constexpr double inf = std::numeric_limits<double>::infinity();
 
 /// The (n, v) part h = n² + v⁴/(1 - n²) and the objective of the inner problem.

@@ -6,7 +6,7 @@ namespace dfc::dem {
 
 std::vector<ParameterSpec> LinearLaw::parameter_specs() {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  // Upscaling by S (reference/dem-physics.md §5): k = E* pi R^2 / (2R) grows
+  // Upscaling by S (docs/theory/upscaling_and_pcrm.md §1): k = E* pi R^2 / (2R) grows
   // with R, so both stiffnesses scale with S (Thakur et al. 2015); friction and
   // the damping ratio are dimensionless and stay fixed.
   return {

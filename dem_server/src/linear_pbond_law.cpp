@@ -10,7 +10,7 @@ std::vector<ParameterSpec> LinearPbondLaw::parameter_specs() {
   constexpr double inf = std::numeric_limits<double>::infinity();
   const Bounds positive{0.0, inf, true};
   const Bounds non_negative{0.0, inf, false};
-  // Upscaling (reference §3.7, §5): moduli, ratios and strengths stay fixed
+  // Upscaling (docs/theory/upscaling_and_pcrm.md §1–2): moduli, ratios and strengths stay fixed
   // (stiffnesses follow the radii through the deformability method); only the
   // bonding gap, a length, scales with S.
   return {

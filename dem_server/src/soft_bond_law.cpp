@@ -10,7 +10,7 @@ std::vector<ParameterSpec> SoftBondLaw::parameter_specs() {
   constexpr double inf = std::numeric_limits<double>::infinity();
   const Bounds positive{0.0, inf, true};
   const Bounds non_negative{0.0, inf, false};
-  // Upscaling (reference §3.7, §5): modulus, ratios, strengths and the
+  // Upscaling (docs/theory/upscaling_and_pcrm.md §1–2): modulus, ratios, strengths and the
   // softening factors stay fixed; the bonding gap scales with S.
   return {
       {"emod_pa", "Pa", std::nullopt, "effective modulus E*, k_n = E*/(R1+R2) [Pa/m] bonded and unbonded", positive, 0.0},

@@ -69,7 +69,7 @@ Options parse(int argc, char** argv) {
                    "  dem_throughput [--side N] [--layers N] [--threads \"1 2\"] [--steps N] [--max-settle N]\n"
                    "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond] [--digest]\n\n"
                    "Without --data: settles a bed of N x N x layers spheres, then times --steps steps per thread count.\n"
-                   "With --data: the peer benchmark on a LAMMPS data file (../shared/bench/peers; see bench/dem_peers.sh).\n"
+                   "With --data: the peer benchmark on a LAMMPS data file (the PEERS_DIR folder of bench/dem_peers.sh).\n"
                    "--digest: also print a hash of the final state's bits (positions, velocities, spins, resultants,\n"
                    "pair history, contact forces), to check that a change to the code leaves results bit-identical.\n";
       std::exit(0);

@@ -168,7 +168,7 @@ protocol::AdvanceResult FdmBackend::advance_driven(const protocol::AdvanceReques
   for (std::size_t r = 0; r < interface_gridpoints_.size(); ++r) s.prescribe_velocity(interface_gridpoints_[r], row(velocity, r));
 
   // Impulse-preserving output: the force this body exerts on each interface
-  // gridpoint, averaged over the steps of the advance (DESIGN §4).
+  // gridpoint, averaged over the steps of the advance (docs/theory/coupling.md §3).
   std::vector<Vec3> force_sum(interface_gridpoints_.size(), Vec3::Zero());
   run_steps(request, [&] {
     for (std::size_t r = 0; r < interface_gridpoints_.size(); ++r) force_sum[r] += s.force_exerted_on_gridpoint(interface_gridpoints_[r]);

@@ -11,7 +11,7 @@ namespace dfc::fdm {
 
 namespace {
 
-// The one table of constitutive models (DESIGN §6).
+// The one table of constitutive models (CONTRIBUTING.md §2).
 const std::array<ConstitutiveModelEntry, 3> kModels = {{
     {ElasticModel::kKeyword, ElasticModel::kSummary, ElasticModel::kParameters, &ElasticModel::from_config},
     {MohrCoulombModel::kKeyword, MohrCoulombModel::kSummary, MohrCoulombModel::kParameters, &MohrCoulombModel::from_config},

@@ -7,7 +7,7 @@ namespace dfc::fdm {
 
 namespace {
 
-// Seed 001 Table 2 (Saint Nicholas at Wade chalk, structured Cam Clay):
+// Ciantia et al. 2024 Table 2 (Saint Nicholas at Wade chalk, structured Cam Clay):
 // E = 1 GPa, ν = 0.12, p_s0 = 3000 kPa, p_t0 = 200 kPa, ρ_s = 19, ρ_t = 15,
 // ξ_s = ξ_t = 0.5, M_f = 1.0, M_g = 1.2; ρ' = 1.4 Mg/m³ → density 1400 kg/m³.
 // e_0 = 0.83 is not a parameter of this formulation (the elastic law is given
@@ -21,7 +21,7 @@ constexpr std::string_view kChalkSnw = R"({
 })";
 
 const std::array<NamedMaterial, 1> kNamedMaterials = {{
-    {"chalk_snw", "seed 001 Table 2: Saint Nicholas at Wade chalk, structured Cam Clay", kChalkSnw},
+    {"chalk_snw", "Ciantia et al. 2024 Table 2: Saint Nicholas at Wade chalk, structured Cam Clay", kChalkSnw},
 }};
 
 }  // namespace

@@ -214,7 +214,7 @@ void Solver::step(double dt) {
   // The reply to configure announces critical_timestep() as dt_max; allow for its round trip through JSON.
   if (!settings_.mass_scaling && dt > critical_timestep_ * (1.0 + 1e-12))
     throw SolverError("time step dt = " + format_seconds(dt) + " exceeds the critical step " + format_seconds(critical_timestep_) +
-                      " of the FDM grid (fdm-physics.md §1.10: min V/(Cp A_max)/2) and mass scaling is off; use dt <= " +
+                      " of the FDM grid (docs/theory/fdm.md §1.10: min V/(Cp A_max)/2) and mass scaling is off; use dt <= " +
                       format_seconds(critical_timestep_) + " or set \"mass_scaling\": true");
   update_inertial_masses(dt);
   gridpoint_pass(dt);

@@ -28,7 +28,7 @@ nlohmann::json to_json(const Vec3& v) { return nlohmann::json::array({v.x(), v.y
 
 /// Zone stresses of the static state: initial stress plus the elastic
 /// increment of the displacement field, with the same mixed discretization
-/// and volume average as the explicit solver (fdm-physics.md §1.5, §1.6).
+/// and volume average as the explicit solver (docs/theory/fdm.md §1.5, §1.6).
 std::vector<Stress> zone_stresses(const fdm::Solver& solver, std::span<const Vec3> displacement) {
   const fdm::ElasticModuli moduli = solver.model().stiffest_moduli();
   std::vector<Stress> out(solver.mesh().zone_count());

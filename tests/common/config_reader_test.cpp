@@ -1,5 +1,5 @@
 // ConfigReader: every scenario value goes through it, so its errors are what
-// users see (STYLE.md §6–7): the key path, what was expected, what was found.
+// users see (CONTRIBUTING.md §6–7): the key path, what was expected, what was found.
 #include <gtest/gtest.h>
 
 #include <functional>

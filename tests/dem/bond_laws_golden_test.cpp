@@ -6,11 +6,11 @@
 //
 // Reasoning per law (details in the script's docstring):
 //  - linear_pbond: incremental N, F_s, M_t, M_b with k̄ A, k̄ I, k̄ J and the
-//    peak stresses at the periphery (reference/dem-physics.md §2.3–2.5);
+//    peak stresses at the periphery (docs/theory/dem_contact_laws.md §2.3–2.5);
 //  - soft_bond: the inferred softening form of docs/dem_bond_laws.md;
 //  - damage_bond: uniaxial paths, where the return to the envelope is its
 //    axis intercept, so N = σ_t A exp(-(u - u_t)/u_cn) in tension etc. in
-//    closed form (reference §3.2–3.4), and the breakage at D > 0.99.
+//    closed form (dem_contact_laws.md §3.2–3.4), and the breakage at D > 0.99.
 // Tolerance: the C++ and Python sums of the same increments round
 // differently by a few ulps per step (<= 1300 steps), and the damage_bond
 // return stops within f in [-1e-12, 0] of the surface, i.e. ~1e-12 relative

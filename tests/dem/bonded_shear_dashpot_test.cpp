@@ -2,7 +2,7 @@
 // beside (linear_pbond) or after (soft_bond, damage_bond) its bond: the
 // scenario key `damping_ratio_shear` reaches the `linear` law inside each
 // (linear_law.hpp), which adds c_s v_t, c_s = 2 beta_s sqrt(m_eff k_s)
-// (reference/dem-physics.md §2.3), while the contact sticks.
+// (docs/theory/dem_contact_laws.md §2.3), while the contact sticks.
 #include <cmath>
 #include <numbers>
 #include <vector>

@@ -1,5 +1,5 @@
 // Properties of the damage_bond law on a combined cyclic N–V–M path
-// (reference/dem-physics.md §3): after every step the elastic state lies
+// (docs/theory/dem_contact_laws.md §3): after every step the elastic state lies
 // inside the envelope (f <= 0), D never decreases, and D equals the
 // corrected Eq. 2 of its accumulated plastic measures.
 #include <cmath>
@@ -11,7 +11,7 @@
 namespace dfc::dem {
 namespace {
 
-DamageBondLaw seed001_law() {  // seed 001 Table 1 (no shear dashpot: the last value)
+DamageBondLaw seed001_law() {  // Ciantia et al. 2024 Table 1 (no shear dashpot: the last value)
   return DamageBondLaw::from_parameters(std::vector<double>{1.7e9, 5.0, 0.5, 0.0, 1.7e9, 5.0, 1.0, 1e6, 50e6, 2e6, 2e-5, 2e-5, 6e-3, 0.0, 0.0});
 }
 
@@ -61,7 +61,7 @@ TEST(DamageBond, LinearContactActsOnlyOnceDamaged) {
   set_bond_state(h.data(), BondState::intact);
   ContactKinematics k;
   k.normal = {0.0, 0.0, 1.0};
-  k.overlap = 1e-7;  // overlapping, but the intact bond alone acts (reference §3.6)
+  k.overlap = 1e-7;  // overlapping, but the intact bond alone acts (dem_contact_laws.md §3.6)
   k.radius_first = k.radius_second = 1e-3;
   k.dt = 1e-6;
   const ContactForce f = law.evaluate(k, h.data());

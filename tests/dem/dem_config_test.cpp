@@ -1,4 +1,4 @@
-// The DEM section: errors name the key path (DESIGN §7, STYLE 6).
+// The DEM section: errors name the key path (CONTRIBUTING.md §6).
 #include <gtest/gtest.h>
 
 #include "dem_test_support.hpp"
@@ -67,7 +67,7 @@ TEST(DemConfig, MissingStiffnessAndFixedStepAboveCriticalAreRefused) {
   EXPECT_EQ(error_of(c).key_path(), "timestep.dt_s");
 }
 
-// Particle upscaling (DESIGN §5, reference dem-physics.md §3.7): radii x S and
+// Particle upscaling (docs/theory/upscaling_and_pcrm.md §2): radii x S and
 // each law's declared rule. Exact equality: the rules are products by powers of
 // S = 2, exact in binary floating point.
 TEST(DemConfig, UpscalingScalesRadiiAndFollowsEachLawsRule) {

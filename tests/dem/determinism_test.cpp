@@ -1,5 +1,5 @@
 // Same input and thread count -> the same bits; and, because no sum depends on
-// how the work is split, 1 and 2 threads agree too (DESIGN §5).
+// how the work is split, 1 and 2 threads agree too (CONTRIBUTING.md §11).
 #include <cmath>
 #include <cstring>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// The `linear` law as a pure function (reference/dem-physics.md §2.3) and its registry entry.
+// The `linear` law as a pure function (docs/theory/dem_contact_laws.md §2.3) and its registry entry.
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -117,7 +117,7 @@ TEST(LinearLaw, ShearDashpotGivesTheLogarithmicDecrementOfADampedOscillator) {
   // displaced tangentially and released: m x'' = -k_s x - c_s x', whose
   // successive maxima fall by exp(-2 pi beta / sqrt(1 - beta^2)) (damped
   // harmonic oscillator; c_s = 2 beta sqrt(m k_s) is beta of critical,
-  // reference §2.3). Stepped as the integrator does (leapfrog: the law sees
+  // dem_contact_laws.md §2.3). Stepped as the integrator does (leapfrog: the law sees
   // the half-step velocity, then the velocity takes the force). With 2000
   // steps a period the scheme's error in the decrement is of order
   // (omega dt)^2 ~ 1e-5; 1e-3 relative is safe and fails for a dashpot off by 0.2 %.
@@ -153,7 +153,7 @@ TEST(ContactLawRegistry, LinearDeclaresParametersHistoryAndUpscaling) {
   const ContactLawSetting base = test::linear(1e5, 4e4, 0.5, 0.1);
   const ContactLawSetting scaled = upscale(base, 3.0);
   const auto& l = std::get<LinearLaw>(scaled.law);
-  // Stiffness ~ E* R scales with S; dimensionless ratios stay (dem-physics.md §5).
+  // Stiffness ~ E* R scales with S; dimensionless ratios stay (docs/theory/upscaling_and_pcrm.md §1).
   EXPECT_DOUBLE_EQ(l.kn, 3e5);
   EXPECT_DOUBLE_EQ(l.ks, 1.2e5);
   EXPECT_EQ(l.friction, 0.5);

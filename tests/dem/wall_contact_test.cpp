@@ -1,5 +1,5 @@
 // Sphere–facet contacts: normal and overlap on a face, an edge and a vertex;
-// barycentric distribution of the force to the facet's vertices (DESIGN §4);
+// barycentric distribution of the force to the facet's vertices (docs/theory/coupling.md §2);
 // one contact per surface feature on meshes with shared edges and vertices;
 // the contact's history carried onto the next facet when the sphere crosses
 // an internal edge.

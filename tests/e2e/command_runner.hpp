@@ -1,6 +1,6 @@
 #pragma once
 // Runs a command as a child process for end-to-end tests: the real
-// executables, as a user would start them (STYLE.md §8).
+// executables, as a user would start them (CONTRIBUTING.md §8).
 #include <sys/types.h>
 
 #include <chrono>

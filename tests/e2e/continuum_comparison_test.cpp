@@ -1,5 +1,5 @@
 // The same coupled pile run against three continua, changing only
-// participants.continuum.program (DESIGN §2, docs/continuum_comparison.md):
+// participants.continuum.program (docs/continuum_comparison.md):
 // fdm_server (explicit, elastic), elastic_reference_server (implicit, static,
 // the same elastic zones) and rigid_continuum_server (fixed walls).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// DEM–FDM coupling through the real processes (issue checks 3 and 7, DESIGN §4).
+// DEM–FDM coupling through the real processes (issue checks 3 and 7, docs/theory/coupling.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

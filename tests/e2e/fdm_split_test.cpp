@@ -1,4 +1,4 @@
-// Coupling verification (DESIGN §4, issue check 2): an elastic box split at a
+// Coupling verification (docs/theory/coupling.md §5, issue check 2): an elastic box split at a
 // plane into two fdm_servers coupled through the coupler — the lower half
 // provides the interface, the upper half is driven by its velocities and
 // returns its interface forces and masses, exactly the path a DEM takes — must

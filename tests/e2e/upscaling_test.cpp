@@ -1,6 +1,6 @@
 // Particle upscaling of bonded rock through the real coupler and DEM server
-// (docs/dem_upscaling.md; issue 3; seed 000 Fig. 4; model guide §3.7 of
-// reference/dem-physics.md). Both scenarios run their variants from one file
+// (docs/dem_upscaling.md; issue 3; Zheng et al. 2023 Fig. 4; Zheng & Ciantia 2025 user guide Eq. 5,
+// docs/theory/dem_contact_laws.md §3.7). Both scenarios run their variants from one file
 // ("variants", coupler/include/dfc/coupler/scenario_variants.hpp).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The closed forms of the verification suite (fdm-physics.md §2) against the
+// The closed forms of the verification suite (docs/theory/fdm.md §2) against the
 // reference values quoted there and against their own limiting cases, so that
 // a table row can only pass against a correct formula.
 #include <gtest/gtest.h>

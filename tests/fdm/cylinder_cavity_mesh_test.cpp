@@ -1,4 +1,4 @@
-// The thick-walled cylinder mesh around the DEM cavity (DESIGN §6).
+// The thick-walled cylinder mesh around the DEM cavity (docs/fdm_models.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The fdm_server section: errors name the key path (DESIGN §7).
+// The fdm_server section: errors name the key path (CONTRIBUTING.md §6).
 #include <gtest/gtest.h>
 
 #include "dfc/common/errors.hpp"

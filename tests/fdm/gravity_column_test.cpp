@@ -1,4 +1,4 @@
-// 1-D soil column under gravity (fdm-physics.md §2(c)): the geostatic initial
+// 1-D soil column under gravity (docs/theory/fdm.md §2(c)): the geostatic initial
 // stress is the discrete equilibrium. (The column run to equilibrium from a
 // stress-free start is the verification problem "gravity_column",
 // fdm_server/verification, run by the CTest fdm_verification.gravity_column.)

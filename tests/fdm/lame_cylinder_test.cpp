@@ -1,4 +1,4 @@
-// Thick-walled cylinder under internal pressure (Lamé; fdm-physics.md §2(b))
+// Thick-walled cylinder under internal pressure (Lamé; docs/theory/fdm.md §2(b))
 // on the cylinder_cavity mesh: exercises the pressure on a curved face group
 // and the radial roller on the outer wall. Plane strain (z rollers on top and
 // bottom), outer radius held (u_r(b) = 0): the closed form is LameSolution
@@ -60,7 +60,7 @@ TEST(LameCylinder, InternalPressureWithRadialRollerOuterWallMatchesClosedForm) {
   }
   std::printf("[ Lame cylinder ] %d steps; u_r(a) error %.2e, worst sigma_r/sigma_theta error %.2e of p (r >= 1.5a)\n", steps, worst_u,
               worst_stress);
-  // fdm-physics.md §2 tolerances: 1–2 % for elastic problems away from singular
+  // docs/theory/fdm.md §2 tolerances: 1–2 % for elastic problems away from singular
   // points; the 48-facet wall alone changes the loaded area by ~0.3 %.
   EXPECT_LT(worst_u, 0.02);
   EXPECT_LT(worst_stress, 0.02);

@@ -1,4 +1,4 @@
-// Density scaling and the timestep limit (fdm-physics.md §1.10).
+// Density scaling and the timestep limit (docs/theory/fdm.md §1.10).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The stress pass of mixed discretization (fdm-physics.md §1.5, last
+// The stress pass of mixed discretization (docs/theory/fdm.md §1.5, last
 // paragraph), offered to models with plastic volume change.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Mohr–Coulomb with tension cut-off (fdm-physics.md §4): the principal-space
+// Mohr–Coulomb with tension cut-off (docs/theory/fdm.md §4): the principal-space
 // return of the Itasca code, and element tests (drained triaxial, oedometer,
 // uniaxial tension) integrated with the material-point driver, compared with
 // hand calculations. Tension positive, σ1 <= σ2 <= σ3.

@@ -1,4 +1,4 @@
-// Readiness of the continuum for the pile problem (seed 001 Fig. 1): the
+// Readiness of the continuum for the pile problem (Ciantia et al. 2024 Fig. 1): the
 // cylinder around the DEM cavity is graded towards the interface and passes
 // the quality checks, and the geostatic state at N·g with K0 is in equilibrium
 // (unbalanced-force ratio < 1e-5, FLAC's default) before coupling starts, both
@@ -23,7 +23,7 @@ constexpr double kK0 = 0.6;
 constexpr double kDensity = 1400.0;  // chalk_snw
 constexpr double kRatio = 1e-5;      // §1.11, FLAC's default equilibrium ratio
 
-// The 100 mm × 120 mm chalk cylinder of seed 001 around a 20 mm-radius DEM cavity.
+// The 100 mm × 120 mm chalk cylinder of Ciantia et al. 2024 around a 20 mm-radius DEM cavity.
 nlohmann::json pile_section(const std::string& inner_wall) {
   nlohmann::json section = nlohmann::json::parse(R"({
     "mesh": {"type": "cylinder_cavity", "inner_radius_m": 0.02, "outer_radius_m": 0.05, "height_m": 0.12,

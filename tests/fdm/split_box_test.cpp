@@ -1,4 +1,4 @@
-// Coupling verification (DESIGN §4): an elastic box split at a plane into a
+// Coupling verification (docs/theory/coupling.md §5): an elastic box split at a plane into a
 // provider and a driven fdm_server, exchanging every step, must converge to the
 // static solution of the unsplit box.
 #include <gtest/gtest.h>

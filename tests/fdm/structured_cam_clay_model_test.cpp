@@ -1,8 +1,8 @@
-// Structured (bonded) Modified Cam Clay (seed 001 §2.2, Table 2; fdm-physics.md
+// Structured (bonded) Modified Cam Clay (Ciantia et al. 2024 §2.2, Table 2; docs/theory/fdm.md
 // §3): the yield-surface geometry, and element tests integrated with the
 // material-point driver (isotropic compression, oedometer, drained triaxial)
 // compared with hand calculations, including the residual state and the
-// softening by bond degradation that the seed describes. The invariants are
+// softening by bond degradation that Ciantia et al. (2024) describe. The invariants are
 // compression positive, the driver's stresses and strains tension positive.
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 namespace dfc::fdm {
 namespace {
 
-// Seed 001 Table 2 (the chalk_snw preset): E = 1 GPa, ν = 0.12, p_s0 = 3 MPa,
+// Ciantia et al. 2024 Table 2 (the chalk_snw preset): E = 1 GPa, ν = 0.12, p_s0 = 3 MPa,
 // p_t0 = 200 kPa, ρ_s = 19, ρ_t = 15, ξ_s = ξ_t = 0.5, M_f = 1.0, M_g = 1.2, k = 0.
 StructuredCamClayParameters chalk() {
   StructuredCamClayParameters m;
@@ -120,7 +120,7 @@ TEST(StructuredCamClay, DrainedTriaxialReachesTheResidualStressRatioOfTheHardeni
 }
 
 TEST(StructuredCamClay, BondDegradationSoftensTheResponse) {
-  // Seed 001 §2.2: p_t (bonding) degrades with plastic strain at rate ρ_t. In a
+  // Ciantia et al. 2024 §2.2: p_t (bonding) degrades with plastic strain at rate ρ_t. In a
   // drained triaxial test at p0 = 500 kPa the bonded material (ρ_t = 0)
   // hardens all the way to 10 % axial strain; with Table 2's debonding
   // (ρ_t = 15) the same test peaks and then softens, and a faster rate softens

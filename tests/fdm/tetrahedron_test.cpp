@@ -1,4 +1,4 @@
-// Tetrahedron kernels and the two-overlay decomposition (fdm-physics.md §1.2–§1.5, §1.7).
+// Tetrahedron kernels and the two-overlay decomposition (docs/theory/fdm.md §1.2–§1.5, §1.7).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -107,7 +107,7 @@ TEST(CondensedElasticContinuum, ComplianceIsSymmetricAndPositiveDefinite) {
 // wall (the force the continuum exerts on the interface gridpoints in its
 // initial state, negated) hold the wall exactly where it is; with no force the
 // unsupported wall converges into the cavity. "Exactly" is round-off: the
-// geostatic zone stresses balance gravity in the interior (fdm-physics.md §2(c)),
+// geostatic zone stresses balance gravity in the interior (docs/theory/fdm.md §2(c)),
 // so the remaining load is ~1e-12 of the wall load.
 TEST(CondensedElasticContinuum, InSituTractionHoldsTheWallStill) {
   const PileContinuum pile;

@@ -1,4 +1,4 @@
-// (b) Thick-walled cylinder under internal pressure (Lamé; fdm-physics.md
+// (b) Thick-walled cylinder under internal pressure (Lamé; docs/theory/fdm.md
 // §2(b)) solved by the elastic reference continuum through its interface: the
 // pressure on the cavity wall arrives as lumped interface forces, exactly as
 // DEM wall forces would, and the condensed compliance returns the wall
@@ -67,7 +67,7 @@ TEST(LameCylinderReference, InterfaceRadialDisplacementMatchesClosedForm) {
   }
   std::printf("[ Lame reference ] u_r(a) exact %.6e m, worst relative error %.2e, worst non-radial part %.2e\n", exact, worst,
               worst_tangential);
-  // The explicit FDM on this mesh is verified to within 2 % (fdm-physics.md §2
+  // The explicit FDM on this mesh is verified to within 2 % (docs/theory/fdm.md §2
   // tolerance for elastic problems; the 48-facet polygonal wall alone changes
   // the loaded area by ~0.3 %). The static solve of the same discretization has
   // the same discretization error (no relaxation error on top), so the same 2 %.

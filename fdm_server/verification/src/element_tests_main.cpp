@@ -8,7 +8,7 @@
 // tests use (tests/fdm/*_model_test.cpp), on materials read by the scenario
 // parser (load_fdm_material), so the curves are what a scenario would get:
 //   mohr_coulomb: drained triaxial at σ3 = 100 and 300 kPa, oedometer;
-//   structured_cam_clay, preset chalk_snw (seed 001 Table 2): drained triaxial
+//   structured_cam_clay, preset chalk_snw (Ciantia et al. 2024 Table 2): drained triaxial
 //   at σ3 = 0.5, 1.5 and 3 MPa, oedometer.
 // One CSV per path: axial_strain, volumetric_strain (compression positive),
 // p_pa, q_pa, sigma_axial_pa, sigma_lateral_pa (compression positive).

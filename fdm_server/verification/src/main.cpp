@@ -1,4 +1,4 @@
-// fdm_verification: runs the FDM verification problems (fdm-physics.md §2)
+// fdm_verification: runs the FDM verification problems (docs/theory/fdm.md §2)
 // with the library directly, prints the table of computed vs closed-form
 // values, and optionally writes it as markdown and runs the mesh-refinement
 // study. Exit status 1 if any row fails (or, with --refinement, if an error

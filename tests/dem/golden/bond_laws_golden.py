@@ -11,7 +11,7 @@ its couple (cx, cz) and the bond state (0 none, 1 intact, 2 damaged,
 3 broken in tension, 4 broken in shear).
 
 The expected values are computed here from the equations of
-reference/dem-physics.md, independently of the C++ code:
+docs/theory/dem_contact_laws.md, independently of the C++ code:
   linear_pbond  §2.1-2.5  (Potyondy & Cundall 2004), step by step;
   soft_bond     §1.2 inferred form, as documented in docs/dem_bond_laws.md;
   damage_bond   §3 on uniaxial paths, where the return to the envelope is
@@ -90,7 +90,7 @@ def pbond_case(name, phases, overlap):
 
 # ---------------------------------------------------------------- soft_bond
 SB = dict(emod_pa=2.8e9, kratio=2.4, friction=0.5, damping_ratio_normal=0.0, sb_rmul=1.0, sb_mcf=1.0, sb_ten_pa=0.45e6,
-          sb_coh_pa=0.45e6, sb_fa_deg=32.0, sb_soft=100.0, sb_cut=0.05, bond_gap_m=0.0)  # seed 000 Table 2
+          sb_coh_pa=0.45e6, sb_fa_deg=32.0, sb_soft=100.0, sb_cut=0.05, bond_gap_m=0.0)  # Zheng et al. 2023 Table 2
 
 
 def soft_case(name, phases, overlap, params=None):
@@ -144,7 +144,7 @@ def soft_case(name, phases, overlap, params=None):
 
 # ---------------------------------------------------------------- damage_bond
 DB = dict(emod_pa=1.7e9, kratio=5.0, friction=0.5, damping_ratio_normal=0.0, bond_emod_pa=1.7e9, bond_kratio=5.0, bond_rmul=1.0,
-          ten_pa=1e6, com_pa=50e6, coh_pa=2e6, ucn_m=2e-5, ucs_m=2e-5, theta_c_rad=6e-3, bond_gap_m=0.0)  # seed 001 Table 1
+          ten_pa=1e6, com_pa=50e6, coh_pa=2e6, ucn_m=2e-5, ucs_m=2e-5, theta_c_rad=6e-3, bond_gap_m=0.0)  # Ciantia et al. 2024 Table 1
 
 
 def damage_uniaxial_case(name, component, phases):
@@ -232,14 +232,14 @@ def main():
         pbond_case("pbond_bending_to_failure", [ph(40, dtb=5.1e-5)], -1e-9),
         pbond_case("pbond_combined_nvm_with_linear_part", [ph(120, dun=-1e-8, dus=5e-8, dtb=2e-5, dtt=2e-5)], 2e-7),
         pbond_case("pbond_cyclic_unload_reload", [ph(10, dun=5e-8), ph(20, dun=-5e-8), ph(25, dun=5e-8)], -1e-9),
-        # soft_bond, seed 000 Table 2: u_c = sigma_t / k_n = 0.45e6 / 1.4e12 m
+        # soft_bond, Zheng et al. 2023 Table 2: u_c = sigma_t / k_n = 0.45e6 / 1.4e12 m
         soft_case("soft_tension_softening_to_failure", [ph(1300, dun=0.45e6 / 1.4e12 / 9.7)], -1e-9),
         soft_case("soft_cyclic_unload_reload", [ph(100, dun=0.45e6 / 1.4e12 / 9.7), ph(40, dun=-0.45e6 / 1.4e12 / 9.7),
                                                   ph(80, dun=0.45e6 / 1.4e12 / 9.7)], -1e-9),
         soft_case("soft_shear_brittle", [ph(40, dus=2e-8)], 1e-8),
         soft_case("soft_bending_softening", [ph(300, dtb=2e-5)], -1e-9, {"sb_soft": 10.0}),
         soft_case("soft_combined_compression_shear_twist", [ph(50, dun=-2e-8, dus=2e-8, dtt=1e-5)], -1e-9),
-        # damage_bond, seed 001 Table 1 (elastic limit in tension sigma_t/kbar_n = 1.18e-6 m)
+        # damage_bond, Ciantia et al. 2024 Table 1 (elastic limit in tension sigma_t/kbar_n = 1.18e-6 m)
         damage_uniaxial_case("damage_tension_to_failure", "normal", [ph(1000, dun=1e-7)]),
         damage_uniaxial_case("damage_compression", "normal", [ph(400, dun=-2e-7)]),
         damage_uniaxial_case("damage_shear_to_failure", "shear", [ph(1200, dus=1e-7)]),

@@ -3,7 +3,7 @@
 //
 // Every accessor records the key as known; finish() then rejects any key that
 // was never asked for, so a typo ("radus") is an error naming the key path and
-// the closest known key instead of a silently ignored setting (DESIGN §7).
+// the closest known key instead of a silently ignored setting (CONTRIBUTING.md §6).
 // Errors are ConfigError with the dotted key path and what was expected.
 //
 //   ConfigReader cfg(section, "dem");

@@ -1,5 +1,5 @@
 #pragma once
-// The three kinds of failure (STYLE.md §7): programmer errors are assertions,
+// The three kinds of failure (CONTRIBUTING.md §7): programmer errors are assertions,
 // user errors are typed exceptions carrying one sentence (what, why, how to fix)
 // and, for scenario input, the key path; warnings go to the log.
 #include <stdexcept>

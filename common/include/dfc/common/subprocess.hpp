@@ -1,6 +1,6 @@
 #pragma once
 // Subprocess: a solver server started and watched by another program — the
-// coupler (which owns the run, DESIGN §2) or the conformance checker (which
+// coupler (which owns the run, docs/theory/coupling.md §1) or the conformance checker (which
 // tests one server). One implementation, so both start, read, reap and kill
 // a server the same way.
 //

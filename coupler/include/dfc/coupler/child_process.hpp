@@ -1,5 +1,5 @@
 #pragma once
-// ChildProcess: a server started by the coupler (DESIGN §2: the coupler owns
+// ChildProcess: a server started by the coupler (docs/theory/coupling.md §1: the coupler owns
 // the run), on top of dfc::Subprocess. stdout is read for the DFC-LISTENING
 // line and then copied to a log file by a small thread (a full pipe would
 // block the server); stderr goes straight to a log file so nothing a crashing

@@ -1,5 +1,5 @@
 #pragma once
-// Scenario: the declarative JSON that describes one run (DESIGN §7).
+// Scenario: the declarative JSON that describes one run (README, "Scenarios").
 //
 // The coupler validates the top level itself; each participant's "config"
 // section is validated by the server that receives it (protocol `configure`,

@@ -1,13 +1,13 @@
 #pragma once
 // The bond cross-section and the deformability method shared by the bonded
-// laws (reference/dem-physics.md §2.1–2.2, §8 items 1–2).
+// laws (docs/theory/dem_contact_laws.md §2.1–2.2).
 //
 // A bond is a disc of elastic springs centred at the contact point in the
 // contact plane: radius R̄ = λ min(R1, R2), area A = π R̄², second moment
 // I = π R̄⁴ / 4, polar moment J = 2 I. Stiffnesses come from moduli (the PFC
 // "deformability" method), so that under particle upscaling by S the moduli
-// stay fixed and the stiffnesses follow the radii (reference §3.7, §5).
-// A ball–facet contact uses the ball radius alone (reference §2.2).
+// stay fixed and the stiffnesses follow the radii (docs/theory/upscaling_and_pcrm.md §1–2).
+// A ball–facet contact uses the ball radius alone (dem_contact_laws.md §2.2).
 #include <algorithm>
 #include <numbers>
 

@@ -1,9 +1,9 @@
 #pragma once
 // Relative motion of the two bodies across a bond during one step, split in
-// the contact frame (reference/dem-physics.md §2.3, §8 item 3). Stored
+// the contact frame (docs/theory/dem_contact_laws.md §2.3, §4). Stored
 // in-plane vectors turn with the contact plane (contact_plane_rotation.hpp).
 //
-// Sign convention of every bonded law (reference §8 item 7 asks for one):
+// Sign convention of every bonded law (docs/theory/README.md, "Sign conventions"):
 // opening and the normal bond force N are positive in TENSION (unlike the
 // compression-positive linear law, whose no-tension spring it reuses as is).
 // Stored shear forces and moments are those acting on the first body.

@@ -1,5 +1,5 @@
 #pragma once
-// The contact-law registry: keyword -> law (DESIGN §5, STYLE "one registry
+// The contact-law registry: keyword -> law (CONTRIBUTING.md §2: "one registry
 // table per plug-in family"). Parsing, --help text and upscaling all read the
 // same table, so a law is documented where it is declared.
 //

@@ -7,7 +7,7 @@
 // sums its own contacts in the fixed order of Incidence (most of them inside
 // the pair loop, the rest in a gather; see Incidence). No atomics, no
 // thread-dependent summation order: results are bit-identical for any thread
-// count (DESIGN §5 "Deterministic").
+// count (CONTRIBUTING.md §11).
 #include <array>
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
 // Stored in-plane vectors (shear forces, bending moments, shear or bending
 // displacements) carried into the current contact plane, every step, before a
-// law adds this step's increments (reference/dem-physics.md §2.3 and §8 item 3:
+// law adds this step's increments (docs/theory/dem_contact_laws.md §2.3 and §4:
 // they turn with the contact frame). The frame turns in two parts, as in
 // PFC3D's contact update:
 //   tilt:  the plane follows its normal from the previous step's to the
@@ -47,7 +47,7 @@ inline void store_vec3(double* h, const Vec3& v) noexcept {
 
 /// The rotation that turns the contact plane from `previous` normal to
 /// `normal` about their common perpendicular n0 × n1, the smallest rotation
-/// between them (Rodrigues; reference/dem-physics.md §8 item 3: stored shear
+/// between them (Rodrigues; docs/theory/dem_contact_laws.md §4: stored shear
 /// forces and moments turn with the contact frame). For v in the old plane
 /// (v·n0 = 0) Rodrigues' formula reduces to
 ///   R v = v − (v·n1) (n0 + n1) / (1 + n0·n1),

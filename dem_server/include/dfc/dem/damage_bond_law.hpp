@@ -1,8 +1,8 @@
 #pragma once
 // `damage_bond`: the Zheng–Ciantia damage-plasticity bond for porous soft
 // rock (Zheng & Ciantia 2025, RMRE, doi 10.1007/s00603-025-04411-0;
-// reference/dem-physics.md §3; seed 001 §2.1 Eqs. 1–2, Table 1).
-// Implemented from the equations only (reference §0, no-copy rule).
+// docs/theory/dem_contact_laws.md §3; Ciantia et al. 2024 §2.1 Eqs. 1–2, Table 1).
+// Implemented from the equations only (no code taken from the authors' implementation).
 //
 //   forces (guide Eq. 1, total form; equal to the code's incremental update
 //   with damaged stiffnesses, §3.1):
@@ -11,8 +11,8 @@
 //     k̄_n = Ē*/(R1+R2), k̄_s = k̄_n/κ̄*, R̄ = λ R_min (§2.1–2.2)
 //   capacities (guide Eq. 4, §3.3): [N̄, V̄, M̃] = [σ_0 A, C A, σ_t I/R̄²](1-D),
 //     σ_0 = σ_t in tension, σ_c in compression (asymmetric envelope)
-//   envelope (seed 001 Eq. 1, §3.2): damage_envelope.hpp
-//   damage (seed 001 Eq. 2 as CORRECTED by reference §3.4, each plastic
+//   envelope (Ciantia et al. 2024 Eq. 1, §3.2): damage_envelope.hpp
+//   damage (guide Eq. 2, not Ciantia et al. 2024 Eq. 2 as printed; §3.4: each plastic
 //   measure over its own characteristic value):
 //     D = 1 - exp(-(ū_n^p/u_cn + ū_s^p/u_cs + θ̄_b^p/θ_c))
 //     with ū^p the ACCUMULATED plastic measures Σ|Δu^p| (equal to |u^p| on a
@@ -61,7 +61,7 @@ struct DamageBondLaw {
   /// While intact the force is (1-D) k A (u - u^p) from stored displacements
   /// alone (the linear contact is off): scaling them scales the load (stress_scaling.hpp).
   static constexpr bool intact_force_from_history = true;
-  static constexpr double breakage_damage = 0.99;  ///< reference §3.6
+  static constexpr double breakage_damage = 0.99;  ///< dem_contact_laws.md §3.6
 
   double emod = 0.0;                  ///< Pa, E* (linear contact)
   double kratio = 1.0;                ///< -, κ*

@@ -1,6 +1,6 @@
 #pragma once
 // The Zheng–Ciantia bond envelope and its closest-point return
-// (reference/dem-physics.md §3.2, §3.5; seed 001 Eq. 1; Zheng & Ciantia 2025).
+// (docs/theory/dem_contact_laws.md §3.2, §3.5; Ciantia et al. 2024 Eq. 1; Zheng & Ciantia 2025).
 //
 // In normalised coordinates n = N/N̄ (signed), v = V/V̄ >= 0, m = |M̆|/M̃ >= 0:
 //   f = m^1.001 + n² + v⁴ / (1 - n²) - 1,    elastic while f <= 0.

@@ -1,5 +1,5 @@
 #pragma once
-// DemBackend: the DEM as a protocol v1 server (SPEC.md §4–§6, DESIGN §4).
+// DemBackend: the DEM as a protocol v1 server (SPEC.md §4–§6, docs/theory/coupling.md).
 //
 // Coupling (accepts_interface): set_interface turns the continuum's boundary
 // nodes and facets into the coupling wall "interface"; each advance takes the

@@ -1,6 +1,6 @@
 #pragma once
 // `linear`: the PFC linear contact model, unbonded and frictional
-// (Itasca PFC 6/7 "Linear Model"; Cundall & Strack 1979; reference/dem-physics.md §2.3).
+// (Itasca PFC 6/7 "Linear Model"; Cundall & Strack 1979; docs/theory/dem_contact_laws.md §2.3).
 //
 //   normal:  F_n = k_n * overlap (compression positive, no tension)
 //            + dashpot F_d = -2 beta_n sqrt(m_eff k_n) v_n (PFC dp_nratio, full mode)
@@ -8,7 +8,7 @@
 //            |F_s| <= mu * F_n                                   (Coulomb slip)
 //            + dashpot 2 beta_s sqrt(m_eff k_s) v_t while not sliding (PFC dp_sratio)
 //
-// Dashpots: c = 2 beta sqrt(m k) (reference/dem-physics.md §2.3, "Dashpots").
+// Dashpots: c = 2 beta sqrt(m k) (docs/theory/dem_contact_laws.md §2.3, dashpots).
 // The normal one acts always (PFC "full" normal mode). The shear one is cut
 // while the contact slides (PFC dp_mode 2, "slip-cut" shear), so a sliding
 // contact carries mu F_n and no more, as in LAMMPS's gran/hooke/history and
@@ -55,7 +55,7 @@ struct LinearLaw {
 
   /// Pair constants (contact_model.hpp HasPairConstants): [0] = -c_n, the
   /// normal dashpot coefficient c_n = 2 beta_n sqrt(m_eff k_n) negated, and
-  /// [1] = c_s = 2 beta_s sqrt(m_eff k_s) (reference/dem-physics.md §2.3), in N s/m.
+  /// [1] = c_s = 2 beta_s sqrt(m_eff k_s) (docs/theory/dem_contact_laws.md §2.3), in N s/m.
   static constexpr std::size_t constants_size = 2;
   void pair_constants(const ContactKinematics& k, double* c) const noexcept {
     c[0] = damping_ratio_normal > 0.0 ? -2.0 * damping_ratio_normal * std::sqrt(k.effective_mass * kn) : 0.0;

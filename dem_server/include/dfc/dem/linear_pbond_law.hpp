@@ -1,6 +1,6 @@
 #pragma once
 // `linear_pbond`: the linear parallel bond (Potyondy & Cundall 2004, IJRMMS
-// 41:1329; Itasca PFC linearpbond; reference/dem-physics.md §2).
+// 41:1329; Itasca PFC linearpbond; docs/theory/dem_contact_laws.md §2).
 //
 //   linear part (always, while the surfaces overlap): the `linear` law with
 //     k_n = π E* R_min²/(R1+R2), k_s = k_n/κ*                    (§2.2)
@@ -16,7 +16,7 @@
 // History (15): state, BondLoad (8), linear shear force (3), the previous
 // step's normal (3). The stored shear force and bending moment of the bond and
 // the linear shear force turn with the contact frame from the previous normal
-// to the current one (contact_plane_rotation.hpp ContactFrameRotation; §8 item 3).
+// to the current one (contact_plane_rotation.hpp ContactFrameRotation; dem_contact_laws.md §4).
 #include <array>
 #include <cmath>
 #include <span>

@@ -1,7 +1,7 @@
 #pragma once
 // The force and moment carried by an elastic bond disc, their incremental
 // update and the peak stresses at its periphery — the machinery shared by
-// linear_pbond and soft_bond (reference/dem-physics.md §2.3–2.5; Potyondy &
+// linear_pbond and soft_bond (docs/theory/dem_contact_laws.md §2.3–2.5; Potyondy &
 // Cundall 2004, Eqs. 8–13).
 #include <cmath>
 
@@ -10,7 +10,7 @@
 
 namespace dfc::dem {
 
-/// The bond disc's stiffnesses against each relative motion (reference §2.3):
+/// The bond disc's stiffnesses against each relative motion (dem_contact_laws.md §2.3):
 /// k̄_n A, k̄_s A, k̄_s J, k̄_n I.
 struct BondStiffness {
   double normal = 0.0;  ///< N/m

@@ -1,5 +1,5 @@
 #pragma once
-// ParticleStore: the spheres as a structure of arrays (DESIGN §5).
+// ParticleStore: the spheres as a structure of arrays (CONTRIBUTING.md §4).
 //
 // One std::vector per field, indexed by *slot*. Slots are an implementation
 // detail: the neighbour search re-sorts them spatially at every rebuild for

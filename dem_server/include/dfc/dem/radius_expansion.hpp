@@ -2,7 +2,7 @@
 // Sample generation by radius expansion in a periodic cell (docs/dem_periodic.md §5)
 // or in a box of fixed walls (docs/dem_triaxial_walls.md).
 //
-// The method of the Zheng–Ciantia examples (reference/dem-physics.md §3.7:
+// The method of the Zheng–Ciantia examples (docs/theory/upscaling_and_pcrm.md §3:
 // "radius expansion with multiplier 1.6 applied in 10 steps"; PFC's
 // radius-expansion generation, Potyondy & Cundall 2004 §3.1):
 //   1. draw radii uniform in [radius_min, radius_max] until their volume

@@ -2,7 +2,7 @@
 // Preparation of a periodic REV before the coupled run (docs/dem_periodic.md §5),
 // or of a sample confined in six walls (docs/dem_triaxial_walls.md),
 // in PFC's order (Potyondy & Cundall 2004 §3.1; the Zheng–Ciantia examples,
-// reference/dem-physics.md §3.7): radius expansion to the target porosity,
+// docs/theory/upscaling_and_pcrm.md §3): radius expansion to the target porosity,
 // servo consolidation to the target stress, then bonds within the bond gap.
 #include <cstdint>
 #include <optional>

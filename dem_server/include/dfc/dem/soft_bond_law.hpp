@@ -1,9 +1,9 @@
 #pragma once
 // `soft_bond`: a bond that softens in tension and fails brittly in shear
-// (Itasca PFC softbond, reference/dem-physics.md §1; parameters of seed 000
+// (Itasca PFC softbond, docs/theory/dem_contact_laws.md §1; parameters of Zheng et al. 2023
 // Table 2: E* 2.8 GPa, κ* 2.4, c 0.45 MPa, σ_t 0.45 MPa, φ 32°, ζ 100, γ 0.05).
 //
-// Itasca's force–displacement equations are [not found] (reference §1.2).
+// Itasca's force–displacement equations are [not found] (dem_contact_laws.md §1.2).
 // This implements the INFERRED form of §1.2, documented in docs/dem_bond_laws.md:
 //  - one set of stiffnesses for bonded and unbonded states (§1.1):
 //    k_n = E*/(R1+R2) [Pa/m] over the bond disc A = π(λ R_min)², k_s = k_n/κ*;

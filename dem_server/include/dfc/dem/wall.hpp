@@ -1,5 +1,5 @@
 #pragma once
-// Walls: triangle meshes the particles touch (DESIGN §4, §5).
+// Walls: triangle meshes the particles touch (docs/theory/coupling.md §2).
 //
 // Two kinds of motion share one representation, per-vertex velocities:
 //   coupling   - vertices are continuum gridpoints; their velocities are given

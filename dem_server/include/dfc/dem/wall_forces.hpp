@@ -1,7 +1,7 @@
 #pragma once
 // From contact forces to wall loads: each contact's force on the wall goes to
 // the facet's three vertices in proportion to the barycentric weights of the
-// contact point (the PFC–FLAC3D wall–zone coupling, DESIGN §4). The weights
+// contact point (the PFC–FLAC3D wall–zone coupling, docs/theory/coupling.md §2). The weights
 // sum to one, so the vertex forces sum to the contact force, and since
 // sum_k w_k x_k = contact point they also carry its moment about any point.
 #include <cstddef>

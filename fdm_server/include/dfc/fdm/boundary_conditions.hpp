@@ -1,6 +1,6 @@
 #pragma once
 // Boundary conditions on face groups. FLAC fixes velocities, not displacements
-// (fdm-physics.md §1.8); loads are lumped to the face corners (§1.7).
+// (docs/theory/fdm.md §1.8); loads are lumped to the face corners (§1.7).
 #include <optional>
 #include <span>
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
-// Kernels of the structured (bonded) Modified Cam Clay of seed 001 §2.2
-// (Monforte et al. 2019; fdm-physics.md §3), in triaxial invariants,
+// Kernels of the structured (bonded) Modified Cam Clay of Ciantia et al. 2024 §2.2
+// (Monforte et al. 2019; docs/theory/fdm.md §3), in triaxial invariants,
 // COMPRESSION POSITIVE: p = −tr(σ)/3, q = √(3/2)‖dev σ‖, ε_v^p = −tr(Δε^p),
 // ε_q^p = √(2/3)‖dev Δε^p‖.
 //
@@ -10,13 +10,13 @@
 //   debonding p_t = p_t,n exp[−ρ_t(|Δε_v^p| + ξ_t Δε_q^p)]                            (§3.3, sign chosen, see below)
 //
 // Unconfirmed details and the choices made (docs/fdm_models.md lists them):
-//  * M_g: the reference found only associative flow in the authors' Kratos
-//    code; seed 001 says "M_f controls the shape of the yield surface while
+//  * M_g: the authors' open-source Kratos implementation has only associative flow in its
+//    code; Ciantia et al. 2024 say "M_f controls the shape of the yield surface while
 //    M_g controls the plastic flow". g is the yield function with M_f replaced
 //    by M_g (the form §3.2 suggests), so g and f share the p-axis intercepts
 //    and the critical state (∂g/∂p = 0 at the ellipse top), and M_g only
 //    rotates the flow vector towards less (M_g > M_f) deviatoric flow.
-//  * Signs: Table 2 lists ρ_t = +15 while the seed describes bond degradation,
+//  * Signs: Table 2 lists ρ_t = +15 while Ciantia et al. 2024 describe bond degradation,
 //    so p_t must DECREASE with plastic strain for ρ_t > 0: the Nova-type sign
 //    ṗ_t = −ρ_t p_t(...) is used, not the Kratos one (which needs ρ_t < 0,
 //    §3.3 "Sign caveat"). For p_s the same Nova-type convention is used,

@@ -1,5 +1,5 @@
 #pragma once
-// Constitutive model interface (fdm-physics.md §1.6). The solver calls a model
+// Constitutive model interface (docs/theory/fdm.md §1.6). The solver calls a model
 // once per tetrahedron per step with the strain increment Δε = ξ Δt (after
 // mixed discretization) and the tetrahedron's stress, which the model updates
 // in place. Plastic models keep history per tetrahedron in a slice of doubles

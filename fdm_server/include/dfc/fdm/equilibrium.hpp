@@ -1,5 +1,5 @@
 #pragma once
-// Stepping a solver to static equilibrium (fdm-physics.md §1.11: the model is
+// Stepping a solver to static equilibrium (docs/theory/fdm.md §1.11: the model is
 // in equilibrium when the average unbalanced-force ratio is below a target,
 // 1e-5 by default in FLAC3D).
 #include "dfc/fdm/solver.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Hexahedral zone → two overlays of five tetrahedra (fdm-physics.md §1.2).
+// Hexahedral zone → two overlays of five tetrahedra (docs/theory/fdm.md §1.2).
 #include <array>
 
 #include "dfc/fdm/mesh.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Geostatic initial stress (fdm-physics.md §2(c)), so that a run under gravity
+// Geostatic initial stress (docs/theory/fdm.md §2(c)), so that a run under gravity
 // can start in equilibrium.
 #include "dfc/fdm/constitutive_model.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// Gridpoint masses and the timestep limit (fdm-physics.md §1.10).
+// Gridpoint masses and the timestep limit (docs/theory/fdm.md §1.10).
 #include <span>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #pragma once
 // Mesh: gridpoints, 8-node hexahedral zones and named boundary face groups.
 //
-// Zone corners are in FLAC3D B8 order (fdm-physics.md §1.2): with local corner
+// Zone corners are in FLAC3D B8 order (docs/theory/fdm.md §1.2): with local corner
 // coordinates (i,j,k) ∈ {0,1}³, gp0=(000) gp1=(100) gp2=(010) gp3=(001)
 // gp4=(110) gp5=(011) gp6=(101) gp7=(111). A face is 4 gridpoints ordered so
 // that the right-hand normal points OUT of the body.

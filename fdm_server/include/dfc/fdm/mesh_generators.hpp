@@ -1,5 +1,5 @@
 #pragma once
-// Mesh generators for the scenarios and the verification problems (DESIGN §6):
+// Mesh generators for the scenarios and the verification problems (docs/fdm_models.md):
 // boxes (optionally graded), a thick-walled cylinder (or a sector of it) around
 // a cylindrical cavity graded towards it, and an octant of a spherical shell
 // around a spherical cavity.

@@ -1,5 +1,5 @@
 #pragma once
-// Mixed discretization (Marti & Cundall 1982; fdm-physics.md §1.5).
+// Mixed discretization (Marti & Cundall 1982; docs/theory/fdm.md §1.5).
 #include <span>
 
 #include "dfc/fdm/types.hpp"

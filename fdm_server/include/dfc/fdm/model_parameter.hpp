@@ -1,5 +1,5 @@
 #pragma once
-// A parameter a plug-in model declares next to its code (STYLE.md §6), so that
+// A parameter a plug-in model declares next to its code (CONTRIBUTING.md §6), so that
 // --help and error messages come from the same table.
 #include <array>
 #include <cstddef>

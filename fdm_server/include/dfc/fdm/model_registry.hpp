@@ -1,6 +1,6 @@
 #pragma once
 // The constitutive-model registry: one table, keyword → factory, each entry
-// declaring its parameters (STYLE.md "one registry table per plug-in family").
+// declaring its parameters (CONTRIBUTING.md §2: one registry table per plug-in family).
 // Adding a model = one row in model_registry.cpp.
 #include <memory>
 #include <span>

@@ -1,6 +1,6 @@
 #pragma once
 // Mohr–Coulomb with tension cut-off, elastic–perfectly plastic, as FLAC3D
-// implements it (fdm-physics.md §4): non-associated shear flow (dilation angle
+// implements it (docs/theory/fdm.md §4): non-associated shear flow (dilation angle
 // ψ), associated tension flow, the shear/tension choice by distance, the apex
 // correction, and the return resolved along the principal directions of the
 // elastic trial stress.

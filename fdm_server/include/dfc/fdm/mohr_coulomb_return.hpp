@@ -1,6 +1,6 @@
 #pragma once
 // The FLAC Mohr–Coulomb return mapping in principal stress space
-// (fdm-physics.md §4; Itasca SDK `modelmohr.cpp`). Tension positive, principal
+// (docs/theory/fdm.md §4; Itasca SDK `modelmohr.cpp`). Tension positive, principal
 // stresses ordered σ1 <= σ2 <= σ3 (σ1 the most compressive).
 //
 //   shear:    F_s = N_φ σ3 − σ1 − 2c√N_φ > 0 fails; potential g_s = σ1 − N_ψ σ3 (non-associated)

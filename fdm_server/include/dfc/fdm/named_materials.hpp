@@ -1,5 +1,5 @@
 #pragma once
-// Named materials: calibrated parameter sets from the seeds, selected in a
+// Named materials: calibrated parameter sets from the papers (docs/references.md), selected in a
 // scenario with "material": {"preset": "<name>"}. Keys given next to "preset"
 // override the preset's values (e.g. a saturated density).
 #include <span>

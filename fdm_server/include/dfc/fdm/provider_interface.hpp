@@ -1,5 +1,5 @@
 #pragma once
-// The provider side of the coupling interface (SPEC.md §6, DESIGN §4), shared
+// The provider side of the coupling interface (SPEC.md §6, docs/theory/coupling.md §3), shared
 // by every continuum that offers the fdm_server interface: fdm_server itself
 // and the reference continua built on the same mesh.
 #include <cstdint>

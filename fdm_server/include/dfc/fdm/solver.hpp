@@ -1,6 +1,6 @@
 #pragma once
 // Solver: the FLAC3D-style explicit Lagrangian cycle, small strain
-// (fdm-physics.md §1.1, §1.12 "Small strain": geometry stays at its initial values).
+// (docs/theory/fdm.md §1.1, §1.12 "Small strain": geometry stays at its initial values).
 //
 // One step(Δt) is
 //   1. gridpoint pass: net force F = Σ tetrahedron forces + ρgV/4 body force +

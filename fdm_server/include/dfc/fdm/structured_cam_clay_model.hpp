@@ -1,6 +1,6 @@
 #pragma once
-// Structured (bonded) Modified Cam Clay for soft rocks (seed 001 §2.2, Table 2;
-// Monforte et al. 2019; fdm-physics.md §3): an MCC ellipse translated into
+// Structured (bonded) Modified Cam Clay for soft rocks (Ciantia et al. 2024 §2.2, Table 2;
+// Monforte et al. 2019; docs/theory/fdm.md §3): an MCC ellipse translated into
 // tension by the bonding p_t, sized by p_c = p_s + (1+k) p_t, with a separate
 // plastic-potential slope M_g, volumetric/deviatoric hardening of p_s and
 // debonding of p_t. The kernels and the choices made where the sources are
@@ -17,7 +17,7 @@ class StructuredCamClayModel final : public ConstitutiveModel {
  public:
   static constexpr std::string_view kKeyword = "structured_cam_clay";
   static constexpr std::string_view kSummary =
-      "bonded Modified Cam Clay (seed 001: p_s, p_t, M_f yield, M_g potential, hardening/debonding rho, xi); linear elasticity";
+      "bonded Modified Cam Clay (Ciantia et al. 2024: p_s, p_t, M_f yield, M_g potential, hardening/debonding rho, xi); linear elasticity";
   static constexpr std::array<ModelParameter, 9> kPlasticParameters = {{
       {"ps0_pa", "Pa", "initial p_s, preconsolidation of the unbonded material, > 0 (raised to the initial stress if that lies outside)"},
       {"pt0_pa", "Pa", "initial p_t, bonding (isotropic tensile strength), >= 0"},
@@ -27,7 +27,7 @@ class StructuredCamClayModel final : public ConstitutiveModel {
       {"rho_t", "-", "rho_t, rate of debonding: dp_t = -rho_t p_t (|d eps_v^p| + xi_t d eps_q^p); default 0"},
       {"xi_s", "-", "xi_s, weight of deviatoric plastic strain in the p_s law; default 0"},
       {"xi_t", "-", "xi_t, weight of deviatoric plastic strain in the p_t law; default 0"},
-      {"k", "-", "k of p_c = p_s + (1+k) p_t (Kratos KSIM; not in seed 001 Table 2), >= 0; default 0"},
+      {"k", "-", "k of p_c = p_s + (1+k) p_t (Kratos KSIM; not in Ciantia et al. 2024 Table 2), >= 0; default 0"},
   }};
   static constexpr auto kParameters = join_parameters(kElasticParameters, kPlasticParameters);
   /// History per tetrahedron (state_names order).

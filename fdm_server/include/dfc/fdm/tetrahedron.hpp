@@ -1,5 +1,5 @@
 #pragma once
-// Constant-strain tetrahedron kernels (fdm-physics.md §1.3, §1.4, §1.7).
+// Constant-strain tetrahedron kernels (docs/theory/fdm.md §1.3, §1.4, §1.7).
 //
 // Node n of a tetrahedron faces "face (n)", the face opposite it, with outward
 // area vector a⁽ⁿ⁾ = n⁽ⁿ⁾S⁽ⁿ⁾; Σₙ a⁽ⁿ⁾ = 0 and the shape-function gradients are

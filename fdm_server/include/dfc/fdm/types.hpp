@@ -1,7 +1,7 @@
 #pragma once
 // Basic value types of the FDM solver: positions/velocities/forces and the
 // symmetric tensors used for stress and strain (tension/extension positive,
-// the FLAC convention of fdm-physics.md "Sign convention").
+// the FLAC convention; docs/theory/README.md, "Sign conventions").
 #include <array>
 #include <cmath>
 #include <cstddef>

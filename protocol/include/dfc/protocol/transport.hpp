@@ -13,7 +13,7 @@
 
 namespace dfc::protocol {
 
-/// Linger 0 (abort paths never block, coupling-and-zeromq.md §4.2) and a
+/// Linger 0 (abort paths never block, ZeroMQ ZMQ_LINGER, zmq_setsockopt(3)) and a
 /// transport-level cap on frame size well above the protocol limits, so that an
 /// over-limit frame still reaches the codec and gets a TOO_LARGE reply while a
 /// absurdly large one is dropped by libzmq before it is buffered.

@@ -1,9 +1,9 @@
 #pragma once
 // CondensedElasticContinuum: the fdm_server model solved statically and
-// condensed to the coupling interface (DESIGN §2, "an implicit linear-elastic
-// solver condensed to the interface").
+// condensed to the coupling interface (docs/theory/coupling.md §1, "implicit linear
+// elasticity condensed to the interface").
 //
-// Equilibrium of the explicit solver's gridpoint forces (fdm-physics.md §1.7,
+// Equilibrium of the explicit solver's gridpoint forces (docs/theory/fdm.md §1.7,
 // §1.8) with an isotropic elastic model and the stress σ = σ₀ + D ε̄(u) is
 //   f_int(σ₀) + ρgV/4 + face loads − K u + f_interface = 0,
 // i.e. K u = r₀ + f_interface with r₀ the force the continuum exerts on each

@@ -1,6 +1,6 @@
 #pragma once
 // ElasticReferenceBackend: an implicit, static, linear-elastic reference
-// continuum (DESIGN §2). It reads the same section as fdm_server — so a
+// continuum (docs/theory/coupling.md §1). It reads the same section as fdm_server — so a
 // scenario swaps the continuum by changing only `program` — builds the same
 // mesh, supports and geostatic state with dfc_fdm, and answers every advance
 // with the static equilibrium of those zones under the interface forces

@@ -1,9 +1,9 @@
 #pragma once
 // The stiffness matrix of the FDM's own discretization, for an implicit static
-// solve on the same zones (DESIGN §2, reference continuum).
+// solve on the same zones (docs/theory/coupling.md §1, reference continuum).
 //
 // Each hexahedral zone is the fdm_server's two overlays of five constant-strain
-// tetrahedra (fdm-physics.md §1.2), each tetrahedron weighted ½ (§1.7), with the
+// tetrahedra (docs/theory/fdm.md §1.2), each tetrahedron weighted ½ (§1.7), with the
 // volumetric strain averaged over the zone's ten tetrahedra (mixed
 // discretization, §1.5). For isotropic elasticity the explicit solver's
 // internal gridpoint forces are then exactly f_int = −K u with

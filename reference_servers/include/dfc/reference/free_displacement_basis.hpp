@@ -2,7 +2,7 @@
 // The supports of the FDM's boundary conditions as a change of unknowns for a
 // static solve: u = T q, where the columns of T span, at each gridpoint, the
 // directions that its fixed and roller conditions leave free
-// (fdm::Solver::constrained, fdm-physics.md §1.8). The constrained system is
+// (fdm::Solver::constrained, docs/theory/fdm.md §1.8). The constrained system is
 // Tᵀ K T q = Tᵀ f: reactions drop out, exactly as the explicit solver drops the
 // held components of the out-of-balance force.
 #include <Eigen/SparseCore>

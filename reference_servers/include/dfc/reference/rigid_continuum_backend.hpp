@@ -1,5 +1,5 @@
 #pragma once
-// RigidContinuumBackend: the simplest reference continuum (DESIGN §2). It reads
+// RigidContinuumBackend: the simplest reference continuum (docs/theory/coupling.md §1). It reads
 // the same section as fdm_server — so a scenario swaps the continuum by
 // changing only `program` — exposes the same interface mesh, and then holds the
 // interface fixed: every velocity it returns is zero, whatever force it

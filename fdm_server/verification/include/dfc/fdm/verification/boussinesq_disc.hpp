@@ -1,6 +1,6 @@
 #pragma once
 // (d) Uniform pressure q on a disc of radius a on an elastic half-space
-// (Boussinesq, integrated; fdm-physics.md §2(d)). COMPRESSION POSITIVE, z is
+// (Boussinesq, integrated; docs/theory/fdm.md §2(d)). COMPRESSION POSITIVE, z is
 // the depth below the surface, on the axis:
 //   σ_z = q [1 − z³/(a²+z²)^{3/2}]
 //   u_z = q/(2G) [2(1−ν)(√(a²+z²) − z) + z − z²/√(a²+z²)],   u_z(0) = 2qa(1−ν²)/E

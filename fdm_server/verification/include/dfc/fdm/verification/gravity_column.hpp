@@ -1,5 +1,5 @@
 #pragma once
-// (c) 1-D column under gravity, K0 state (fdm-physics.md §2(c)). Compression
+// (c) 1-D column under gravity, K0 state (docs/theory/fdm.md §2(c)). Compression
 // positive: σv = ρ g d, σh = K0 σv with K0 = ν/(1−ν), top settlement ρ g H²/(2M),
 // M = K + 4G/3.
 #include "dfc/fdm/verification/result.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // (a) Cylindrical hole in an infinite elastic medium under far-field stress
-// (Kirsch; fdm-physics.md §2(a), the Itasca test data). COMPRESSION POSITIVE,
+// (Kirsch; docs/theory/fdm.md §2(a), the Itasca test data). COMPRESSION POSITIVE,
 // θ measured from the direction of p1:
 //   σ_r = (p1+p2)/2 (1 − a²/r²) + (p1−p2)/2 (1 − 4a²/r² + 3a⁴/r⁴) cos2θ
 //   σ_θ = (p1+p2)/2 (1 + a²/r²) − (p1−p2)/2 (1 + 3a⁴/r⁴) cos2θ

@@ -1,6 +1,6 @@
 #pragma once
 // (b) Thick-walled cylinder under internal pressure, plane strain (Lamé;
-// fdm-physics.md §2(b)). Tension positive: σ_r = A − B/r², σ_θ = A + B/r²,
+// docs/theory/fdm.md §2(b)). Tension positive: σ_r = A − B/r², σ_θ = A + B/r²,
 // A = (p_i a² − p_o b²)/(b² − a²), B = (p_i − p_o) a² b²/(b² − a²),
 // u_r = r/(2G) [(1−2ν) A + B/r²].
 // With the outer wall held radially instead (u_r(b) = 0, outer_wall_held):

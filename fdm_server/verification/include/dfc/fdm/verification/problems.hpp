@@ -1,5 +1,5 @@
 #pragma once
-// The verification suite (fdm-physics.md §2): one table of problems, each a
+// The verification suite (docs/theory/fdm.md §2): one table of problems, each a
 // fixture run by the library directly and compared with its closed form. The
 // executable fdm_verification and the CTest entries both run this table.
 #include <span>
@@ -12,7 +12,7 @@ namespace dfc::fdm::verification {
 struct VerificationProblem {
   std::string_view key;        ///< command-line name, e.g. "kirsch"
   std::string_view title;      ///< e.g. "Kirsch: hole in a plate under far-field stress"
-  std::string_view reference;  ///< section of fdm-physics.md
+  std::string_view reference;  ///< section of docs/theory/fdm.md
   double tolerance;            ///< relative, for every row
   std::string_view why;        ///< why that tolerance
   int unit_level;              ///< fast mesh (CTest label "unit", < ~20 s)

@@ -1,6 +1,6 @@
 #pragma once
 // (f) Cylindrical hole in an infinite Mohr–Coulomb medium (Salençon 1969;
-// fdm-physics.md §2(f), the Itasca test data). COMPRESSION POSITIVE, with
+// docs/theory/fdm.md §2(f), the Itasca test data). COMPRESSION POSITIVE, with
 // K_p = (1+sinφ)/(1−sinφ), q = 2c tan(45° + φ/2), K_ps = (1+sinψ)/(1−sinψ):
 //   R0 = a [2/(K_p+1) (P0 + q/(K_p−1)) / (Pi + q/(K_p−1))]^{1/(K_p−1)},  σ_re = (2P0 − q)/(K_p+1)
 //   plastic zone: σ_r = −q/(K_p−1) + (Pi + q/(K_p−1)) (r/a)^{K_p−1},  σ_θ = −q/(K_p−1) + K_p (…)(r/a)^{K_p−1}

@@ -1,6 +1,6 @@
 #pragma once
 // (g) Spherical cavity in an elastic–perfectly plastic Mohr–Coulomb medium
-// (fdm-physics.md §2(g)). COMPRESSION POSITIVE, cavity pressure p, in-situ p0,
+// (docs/theory/fdm.md §2(g)). COMPRESSION POSITIVE, cavity pressure p, in-situ p0,
 // K_p = (1+sinφ)/(1−sinφ), Y = 2c√K_p:
 //   elastic:     σ_r = p0 + (p−p0)(a/r)³,  σ_θ = p0 − ½(p−p0)(a/r)³,  u_r = (p−p0) a³/(4G r²)  (outward)
 //   first yield: p_y = p0 + 2[(K_p−1) p0 + Y]/(K_p + 2)

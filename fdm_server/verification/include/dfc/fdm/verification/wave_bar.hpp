@@ -1,5 +1,5 @@
 #pragma once
-// (e) 1-D elastic wave in a laterally confined bar (fdm-physics.md §2(e)): a
+// (e) 1-D elastic wave in a laterally confined bar (docs/theory/fdm.md §2(e)): a
 // velocity step v0 at one end sends a front at C_p = √(M/ρ), M = K + 4G/3,
 // arriving at distance x at t = x/C_p, behind which σ = ρ C_p v0 and the
 // particle velocity is v0.
