@@ -111,6 +111,23 @@ TEST(ProbedDefects, NonFiniteContinuumVelocityBlamesTheContinuum) {
   EXPECT_EQ(result.output.find("server dem ("), std::string::npos) << result.output;
 }
 
+// Item 9: a bed too large to snapshot passed `check` and died with a bare
+// std::bad_alloc at the first snapshot; check estimates it, with the key.
+TEST(ProbedDefects, ABedTooLargeToSnapshotIsRefusedAtCheckWithItsKey) {
+  const auto dir = fresh_directory("probe_huge_bed");
+  const nlohmann::json scenario = {
+      {"schema_version", 1},
+      {"name", "huge_bed"},
+      {"participants",
+       {{"continuum",
+         {{"program", "conformance_fixture_server"}, {"args", {"--break", "huge-particle-count"}}, {"config", {{"side", 3}}}}}}},
+      {"run", {{"exchanges", 1}}}};
+  const CommandResult result = run_command({coupler(), "check", write_scenario(dir, scenario).string()}, std::chrono::seconds(30));
+  EXPECT_EQ(result.exit_status, 2) << result.output;
+  EXPECT_NE(result.output.find("scenario error at participants.continuum.config: the model has 20000000000 particles"), std::string::npos)
+      << result.output;
+}
+
 // Item 13: failures went to stdout and stderr stayed empty.
 TEST(ProbedDefects, FailuresArePrintedOnStderr) {
   const auto dir = fresh_directory("probe_stderr");

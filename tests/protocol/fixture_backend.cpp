@@ -23,6 +23,7 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "hang") return Breakage::hang_in_advance;
   if (name == "no-force-monitor") return Breakage::no_force_monitor;
   if (name == "nan-velocity") return Breakage::nan_velocity;
+  if (name == "huge-particle-count") return Breakage::huge_particle_count;
   return std::nullopt;
 }
 
@@ -49,6 +50,7 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
     }
   velocity_.assign(mesh_.coordinates.size(), 0.0);
   displacement_.assign(mesh_.coordinates.size(), 0.0);
+  if (breakage_ == Breakage::huge_particle_count) monitors_ = {{"particle_count", 2e10}};
   return {{"dt_suggested", 1e-3}, {"dt_max", 1e-2}};
 }
 
@@ -60,7 +62,8 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::none:
     case Breakage::wrong_output_shape:
     case Breakage::no_force_monitor:
-    case Breakage::nan_velocity: break;
+    case Breakage::nan_velocity:
+    case Breakage::huge_particle_count: break;
   }
   const std::int64_t n = mesh_.node_count();
   require_only(request.inputs, {field::force, field::mass}, "conformance_fixture_server");
