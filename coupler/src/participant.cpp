@@ -105,7 +105,7 @@ void Participant::stop() noexcept {
     // It may already be gone; killing below is the fallback.
   }
   // After Ctrl-C the user is waiting: a server that does not exit at once is killed.
-  const auto grace = std::chrono::milliseconds(stop_->requested() ? 300 : 1000);
+  const auto grace = std::chrono::milliseconds(stop_->requested() ? 200 : 1000);
   if (process_ && !process_->wait_exit(grace)) process_->kill();
 }
 

@@ -26,6 +26,15 @@ nlohmann::json dem_on_fixture(const std::string& name, const std::string& breaka
   return scenario;
 }
 
+/// The conformance fixture alone, broken in `breakage`, for `exchanges` exchanges.
+nlohmann::json fixture_alone(const std::string& name, const std::string& breakage, int exchanges) {
+  return {{"schema_version", 1},
+          {"name", name},
+          {"participants",
+           {{"continuum", {{"program", "conformance_fixture_server"}, {"args", {"--break", breakage}}, {"config", {{"side", 3}}}}}}},
+          {"run", {{"exchanges", exchanges}}}};
+}
+
 std::filesystem::path write_scenario(const std::filesystem::path& dir, const nlohmann::json& scenario) {
   const auto file = dir / (scenario.at("name").get<std::string>() + ".json");
   std::ofstream(file) << scenario.dump(2);
@@ -52,12 +61,8 @@ CommandResult run_keeping_stream(const std::vector<std::string>& argv, int keep)
 // 30 min with deadline_s 1800); it must end the run within 2 s.
 TEST(ProbedDefects, CtrlCEndsARunWithAHungServerWithinTwoSeconds) {
   const auto dir = fresh_directory("probe_ctrl_c");
-  const nlohmann::json scenario = {
-      {"schema_version", 1},
-      {"name", "hang_ctrl_c"},
-      {"participants",
-       {{"continuum", {{"program", "conformance_fixture_server"}, {"args", {"--break", "hang"}}, {"config", {{"side", 3}}}}}}},
-      {"run", {{"exchanges", 5}, {"deadline_s", 1800}}}};
+  nlohmann::json scenario = fixture_alone("hang_ctrl_c", "hang", 5);
+  scenario["run"]["deadline_s"] = 1800;  // the shipped value: Ctrl-C waited for all of it
   const auto log = dir / "coupler.log";
   const pid_t coupler_pid =
       start_command({coupler(), "run", write_scenario(dir, scenario).string(), "--out", (dir / "out").string(), "--no-progress"}, log);
@@ -115,13 +120,7 @@ TEST(ProbedDefects, NonFiniteContinuumVelocityBlamesTheContinuum) {
 // std::bad_alloc at the first snapshot; check estimates it, with the key.
 TEST(ProbedDefects, ABedTooLargeToSnapshotIsRefusedAtCheckWithItsKey) {
   const auto dir = fresh_directory("probe_huge_bed");
-  const nlohmann::json scenario = {
-      {"schema_version", 1},
-      {"name", "huge_bed"},
-      {"participants",
-       {{"continuum",
-         {{"program", "conformance_fixture_server"}, {"args", {"--break", "huge-particle-count"}}, {"config", {{"side", 3}}}}}}},
-      {"run", {{"exchanges", 1}}}};
+  const nlohmann::json scenario = fixture_alone("huge_bed", "huge-particle-count", 1);
   const CommandResult result = run_command({coupler(), "check", write_scenario(dir, scenario).string()}, std::chrono::seconds(30));
   EXPECT_EQ(result.exit_status, 2) << result.output;
   EXPECT_NE(result.output.find("scenario error at participants.continuum.config: the model has 20000000000 particles"), std::string::npos)
@@ -131,12 +130,7 @@ TEST(ProbedDefects, ABedTooLargeToSnapshotIsRefusedAtCheckWithItsKey) {
 // Item 13: failures went to stdout and stderr stayed empty.
 TEST(ProbedDefects, FailuresArePrintedOnStderr) {
   const auto dir = fresh_directory("probe_stderr");
-  const nlohmann::json scenario = {
-      {"schema_version", 1},
-      {"name", "throwing"},
-      {"participants",
-       {{"continuum", {{"program", "conformance_fixture_server"}, {"args", {"--break", "throw"}}, {"config", {{"side", 3}}}}}}},
-      {"run", {{"exchanges", 2}}}};
+  const nlohmann::json scenario = fixture_alone("throwing", "throw", 2);
   const auto file = write_scenario(dir, scenario);
   const std::vector<std::string> argv{coupler(), "run", file.string(), "--out", (dir / "out").string(), "--no-progress"};
   const CommandResult stdout_only = run_keeping_stream(argv, 1);

@@ -39,7 +39,7 @@ class RunInterrupted : public std::runtime_error {
 /// (up to 30 min). Shared by the participants of one run: one grace in all.
 class StopRequest {
  public:
-  static constexpr std::chrono::milliseconds kGrace{800};
+  static constexpr std::chrono::milliseconds kGrace{500};
   /// `flag` (may be null: never) is set by the signal handler.
   explicit StopRequest(const std::atomic<bool>* flag) : flag_(flag) {}
   [[nodiscard]] bool requested() const noexcept { return flag_ != nullptr && flag_->load(); }
