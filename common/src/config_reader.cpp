@@ -47,18 +47,6 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-std::string describe_bounds(Bounds bounds) {
-  const bool has_min = std::isfinite(bounds.min);
-  const bool has_max = std::isfinite(bounds.max);
-  if (has_min && bounds.min_exclusive && bounds.min == 0.0 && !has_max) return "a positive number";
-  if (has_min && has_max)
-    return "a number in " + std::string(bounds.min_exclusive ? "(" : "[") + format_number(bounds.min) + ", " +
-           format_number(bounds.max) + "]";
-  if (has_min) return "a number " + std::string(bounds.min_exclusive ? "> " : ">= ") + format_number(bounds.min);
-  if (has_max) return "a number <= " + format_number(bounds.max);
-  return "a finite number";
-}
-
 }  // namespace
 
 ConfigReader::ConfigReader(const nlohmann::json& object, std::string path) : object_(&object), path_(std::move(path)) {
@@ -114,16 +102,29 @@ double ConfigReader::positive(std::string_view key, double fallback) {
 }
 
 std::int64_t ConfigReader::integer(std::string_view key, std::int64_t min_value) {
-  const nlohmann::json& value = require(key, "an integer >= " + std::to_string(min_value));
-  if (!value.is_number_integer()) fail(key, "expected an integer, got " + type_name(value) + " " + short_dump(value));
-  const auto x = value.get<std::int64_t>();
-  if (x < min_value || (value.is_number_unsigned() && value.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<std::int64_t>::max())))
-    fail(key, "expected an integer >= " + std::to_string(min_value) + ", got " + value.dump());
-  return x;
+  return integer_in(key, min_value, std::numeric_limits<std::int64_t>::max());
 }
 
 std::int64_t ConfigReader::integer(std::string_view key, std::int64_t fallback, std::int64_t min_value) {
   return has(key) ? integer(key, min_value) : (accept(key), fallback);
+}
+
+std::int64_t ConfigReader::integer(std::string_view key, std::int64_t fallback, std::int64_t min_value, std::int64_t max_value) {
+  return has(key) ? integer_in(key, min_value, max_value) : (accept(key), fallback);
+}
+
+std::int64_t ConfigReader::integer_in(std::string_view key, std::int64_t min_value, std::int64_t max_value) {
+  const bool bounded = max_value != std::numeric_limits<std::int64_t>::max();
+  const std::string expected = bounded ? "an integer in [" + std::to_string(min_value) + ", " + std::to_string(max_value) + "]"
+                                       : "an integer >= " + std::to_string(min_value);
+  const nlohmann::json& value = require(key, expected);
+  if (!value.is_number_integer()) fail(key, "expected an integer, got " + type_name(value) + " " + short_dump(value));
+  // Unsigned values beyond int64 (e.g. 2^64 - 1) must not wrap to a small number.
+  if (value.is_number_unsigned() && value.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
+    fail(key, "expected " + expected + ", got " + value.dump());
+  const auto x = value.get<std::int64_t>();
+  if (x < min_value || x > max_value) fail(key, "expected " + expected + ", got " + value.dump());
+  return x;
 }
 
 std::array<double, 3> ConfigReader::vec3(std::string_view key) {
@@ -234,6 +235,20 @@ void ConfigReader::finish() const {
     throw ConfigError(key_path(key), reason);
   }
 }
+
+std::string describe_bounds(Bounds bounds) {
+  const bool has_min = std::isfinite(bounds.min);
+  const bool has_max = std::isfinite(bounds.max);
+  if (has_min && bounds.min_exclusive && bounds.min == 0.0 && !has_max) return "a positive number";
+  if (has_min && has_max)
+    return "a number in " + std::string(bounds.min_exclusive ? "(" : "[") + format_number(bounds.min) + ", " +
+           format_number(bounds.max) + "]";
+  if (has_min) return "a number " + std::string(bounds.min_exclusive ? "> " : ">= ") + format_number(bounds.min);
+  if (has_max) return "a number <= " + format_number(bounds.max);
+  return "a finite number";
+}
+
+int read_thread_count(ConfigReader& section) { return int(section.integer("threads", 0, 0, kMaxThreads)); }
 
 std::string canonical_json(const nlohmann::json& value) { return value.dump(); }
 

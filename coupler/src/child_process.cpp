@@ -28,10 +28,12 @@ ChildProcess::~ChildProcess() {
   if (stdout_copier_.joinable()) stdout_copier_.join();
 }
 
-std::string ChildProcess::wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label) {
+std::string ChildProcess::wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label,
+                                            const std::function<void()>& while_waiting) {
   const std::string marker = "DFC-LISTENING ";
   const auto until = std::chrono::steady_clock::now() + timeout;
   while (true) {
+    while_waiting();
     // Short reads so that an exit is noticed within 100 ms.
     if (const auto line = process_.read_line(std::chrono::milliseconds(100))) {
       if (line->rfind(marker, 0) == 0) {

@@ -10,6 +10,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <string_view>
 
 #include "dfc/common/errors.hpp"
@@ -77,7 +78,7 @@ int run_command(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if (arg == "--out") {
-      if (i + 1 >= argc) throw dfc::UserError("--out needs a folder");
+      if (i + 1 >= argc || argv[i + 1][0] == '\0') throw dfc::UserError("--out needs a folder for the results");
       options.output_directory = argv[++i];
     } else if (arg == "--no-progress") {
       options.progress = false;
@@ -90,6 +91,9 @@ int run_command(int argc, char** argv) {
     }
   }
   if (scenario_path.empty()) throw dfc::UserError("no scenario file given (coupler " + std::string(command) + " SCENARIO.json)");
+  if (command == "run" && options.output_directory != fs::path())
+    if (const auto problem = dfc::coupler::output_directory_problem(options.output_directory, scenario_path))
+      throw dfc::UserError("--out " + *problem);
 
   const auto scenarios = dfc::coupler::load_scenarios(scenario_path, own_bin_dir());
   const bool variants = !scenarios.front().variant_label.empty();
@@ -112,7 +116,7 @@ int run_command(int argc, char** argv) {
       std::cout << "=== Variant " << k + 1 << "/" << scenarios.size() << ": " << scenario.name << "\n";
       if (!out_override.empty()) options.output_directory = out_override / scenario.variant_label;
     }
-    const int status = dfc::coupler::run_scenario(scenario, options, std::cout);
+    const int status = dfc::coupler::run_scenario(scenario, options, std::cout, std::cerr);
     if (status != 0) return status;
   }
   if (variants) {
@@ -137,6 +141,10 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const dfc::coupler::ParticipantFailure& e) {
     std::cerr << "coupler: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "coupler: out of memory: the scenario needs more memory than this machine has; make the model smaller (fewer particles "
+                 "or zones) or run it on a larger machine\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "coupler: internal error: " << e.what() << "\n";

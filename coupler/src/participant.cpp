@@ -1,19 +1,33 @@
 #include "dfc/coupler/participant.hpp"
 
 #include "dfc/common/errors.hpp"
+#include "dfc/protocol/transport.hpp"
 
 namespace dfc::coupler {
 
+void StopRequest::check(const std::string& pending) {
+  if (!requested()) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (!first_seen_) first_seen_ = now;
+  if (now - *first_seen_ > kGrace)
+    throw RunInterrupted("stopped by a signal (Ctrl-C) during " + pending + ", which did not end within " + std::to_string(kGrace.count()) +
+                         " ms of it");
+}
+
 Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-                         std::chrono::milliseconds startup_timeout)
-    : spec_(spec) {
+                         std::chrono::milliseconds startup_timeout, StopRequest& stop)
+    : spec_(spec), stop_(&stop) {
   std::string endpoint = spec.endpoint;
   if (endpoint.empty()) {
     std::vector<std::string> args = spec.args;
     args.insert(args.end(), {"--bind", "tcp://127.0.0.1:*"});
     process_ = std::make_unique<ChildProcess>(spec.executable, args, log_dir / (spec.slot + ".stderr.log"),
                                               log_dir / (spec.slot + ".stdout.log"));
-    endpoint = process_->wait_for_endpoint(startup_timeout, spec.slot + " server '" + spec.program + "'");
+    endpoint = process_->wait_for_endpoint(startup_timeout, spec.slot + " server '" + spec.program + "'",
+                                           [this] { stop_->check("the start of server " + label()); });
+    if (const auto problem = protocol::endpoint_problem(endpoint))
+      throw ConfigError(spec.key_path() + ".program", "'" + spec.program + "' printed the line 'DFC-LISTENING " + endpoint + "', which is no endpoint: " +
+                                                          *problem + "; a protocol v1 server prints the endpoint it bound (SPEC.md §2)");
   }
   client_ = std::make_unique<protocol::SolverClient>(context, endpoint, label());
   client_->connection().set_wait_hook([this] { check_alive(); });
@@ -35,6 +49,7 @@ bool Participant::has(std::string_view capability) const {
 }
 
 void Participant::check_alive() {
+  stop_->check("the wait for server " + label());
   if (!process_) return;
   if (const auto exited = process_->exit_description())
     throw ParticipantFailure("server " + label() + " " + *exited + ". Last lines of its stderr (" + process_->stderr_log().string() +
@@ -44,6 +59,7 @@ void Participant::check_alive() {
 void Participant::fail(const std::exception& error, const std::string& doing) {
   if (const auto* failure = dynamic_cast<const ParticipantFailure*>(&error)) throw *failure;
   if (const auto* config = dynamic_cast<const ConfigError*>(&error)) throw *config;
+  if (const auto* interrupted = dynamic_cast<const RunInterrupted*>(&error)) throw *interrupted;
   std::string message = "server " + label() + " failed while " + doing + ": " + error.what();
   if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr)
     message = "server " + label() + " did not answer while " + doing + " (" + error.what() +
@@ -88,7 +104,9 @@ void Participant::stop() noexcept {
   } catch (...) {
     // It may already be gone; killing below is the fallback.
   }
-  if (process_ && !process_->wait_exit(std::chrono::milliseconds(1000))) process_->kill();
+  // After Ctrl-C the user is waiting: a server that does not exit at once is killed.
+  const auto grace = std::chrono::milliseconds(stop_->requested() ? 200 : 1000);
+  if (process_ && !process_->wait_exit(grace)) process_->kill();
 }
 
 }  // namespace dfc::coupler

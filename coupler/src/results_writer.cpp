@@ -12,6 +12,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/hdf5_file.hpp"
+#include "dfc/common/json_text.hpp"
 #include "dfc/coupler/xdmf_writer.hpp"
 
 namespace dfc::coupler {
@@ -142,7 +143,7 @@ ResultsWriter::ResultsWriter(std::filesystem::path path, const nlohmann::json& s
   h5::File file = h5::File::create(path);
   state_ = std::make_unique<State>(std::move(path), std::move(file));
   const h5::Group root = state_->file.root();
-  h5::write_attribute(root.id(), "scenario", scenario.dump(2));
+  h5::write_attribute(root.id(), "scenario", readable_json(scenario));
   h5::write_attribute(root.id(), "versions", versions.dump(2));
   h5::write_attribute(root.id(), "created_utc", utc_now_iso8601());
   h5::write_attribute(root.id(), "format", format_name);

@@ -2,20 +2,29 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "dfc/common/config_reader.hpp"
+#include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/common/json_text.hpp"
 #include "dfc/coupler/scenario_variants.hpp"
+#include "dfc/protocol/message.hpp"
+#include "dfc/protocol/transport.hpp"
 
 namespace dfc::coupler {
 
 namespace {
 
 namespace fs = std::filesystem;
+
+// Time steps below 1e-12 s are no physical model's (a DEM step of micron
+// grains is ~1e-9 s); 1e-300 only made step counts overflow.
+constexpr Bounds kTimeStepBounds{1e-12, 1e6};
 
 bool is_executable(const fs::path& p) {
   std::error_code ec;
@@ -57,8 +66,7 @@ ParticipantSpec read_participant(ConfigReader reader, const std::string& slot, c
     spec.executable = *resolved;
   } else {
     if (reader.has("program")) reader.fail("program", "give either 'program' (start a server) or 'endpoint' (connect to a running one), not both");
-    if (spec.endpoint.rfind("tcp://", 0) != 0 && spec.endpoint.rfind("ipc://", 0) != 0)
-      reader.fail("endpoint", "expected a ZeroMQ endpoint such as \"tcp://127.0.0.1:5555\", got \"" + spec.endpoint + "\"");
+    if (const auto problem = protocol::endpoint_problem(spec.endpoint)) reader.fail("endpoint", *problem);
   }
   if (reader.has("args")) spec.args = reader.strings("args");
   else reader.accept("args");
@@ -73,6 +81,27 @@ ParticipantSpec read_participant(ConfigReader reader, const std::string& slot, c
   return spec;
 }
 
+/// Reads the scenario file's text, refusing what is not a sensible scenario
+/// file before reading it: a folder, a device such as /dev/zero (endless), a file
+/// beyond kMaxScenarioBytes.
+std::string read_scenario_text(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw UserError("cannot open scenario file '" + path.string() + "'; check the path");
+  if (fs::is_directory(status)) throw UserError("scenario '" + path.string() + "' is a directory; give the path of a scenario JSON file in it");
+  if (!fs::is_regular_file(status))
+    throw UserError("scenario '" + path.string() + "' is not a regular file (a device, pipe or socket); give the path of a scenario JSON file");
+  const auto size = fs::file_size(path, ec);
+  if (!ec && size > kMaxScenarioBytes)
+    throw UserError("scenario '" + path.string() + "' has " + std::to_string(size) + " bytes; scenario files are limited to " +
+                    std::to_string(kMaxScenarioBytes >> 20) + " MiB (large data such as particle lists belong in the server's own input files)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError("cannot open scenario file '" + path.string() + "'; check the path");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
 
 const ParticipantSpec* Scenario::participant(std::string_view slot) const {
@@ -81,16 +110,39 @@ const ParticipantSpec* Scenario::participant(std::string_view slot) const {
   return nullptr;
 }
 
+bool is_single_folder_name(std::string_view name) {
+  return !name.empty() && name != "." && name != ".." && name.find('/') == std::string_view::npos && name.find('\0') == std::string_view::npos;
+}
+
+std::optional<std::string> output_directory_problem(const fs::path& directory, const fs::path& scenario_source) {
+  if (directory.empty()) return "expected a folder for the results, got an empty path; leave the key out to use results/<name>";
+  std::error_code ec;
+  fs::path target = fs::weakly_canonical(fs::absolute(directory), ec);
+  if (ec) return std::nullopt;  // unresolvable paths fail, with their reason, when the folder is created
+  if (!target.has_filename()) target = target.parent_path();  // "dir/" names the same folder as "dir"
+  const fs::path working = fs::weakly_canonical(fs::current_path(), ec);
+  // The working folder or one above it: results.h5, scenario.json and logs/
+  // would land among (and overwrite) the user's own files.
+  const std::string named = directory.string();  // an lvalue: "'" + a temporary trips GCC 12's -Wrestrict
+  if (std::mismatch(target.begin(), target.end(), working.begin(), working.end()).first == target.end())
+    return "'" + named + "' is the working folder or one above it; the results (scenario.json, results.h5, logs/) would overwrite files "
+           "there: name a folder of their own, e.g. results/<name>";
+  if (!scenario_source.empty()) {
+    const fs::path inputs = fs::weakly_canonical(fs::absolute(scenario_source), ec).parent_path();
+    if (!ec && target == inputs)
+      return "'" + named + "' is the folder of the scenario file; the results (scenario.json, results.h5, logs/) would overwrite "
+             "inputs there: name a folder of their own, e.g. results/<name>";
+  }
+  return std::nullopt;
+}
+
 std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_dir) {
-  std::ifstream in(path);
-  if (!in) throw UserError("cannot open scenario file '" + path.string() + "'; check the path");
-  std::stringstream text;
-  text << in.rdbuf();
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(text.str());
-  } catch (const nlohmann::json::parse_error& e) {
-    throw UserError("scenario '" + path.string() + "' is not valid JSON: " + e.what());
+    document = parse_json_text(read_scenario_text(path), JsonTextLimits{.reject_duplicate_keys = true});
+  } catch (const JsonTextError& e) {
+    if (e.kind() == JsonTextError::Kind::syntax) throw UserError("scenario '" + path.string() + "' is not valid JSON: " + e.what());
+    throw ConfigError(e.key_path(), e.reason());
   }
   std::vector<Scenario> scenarios;
   for (const ScenarioVariant& variant : expand_variants(document)) {
@@ -115,8 +167,8 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
     root.fail("schema_version", "this coupler reads schema_version " + std::to_string(kScenarioSchemaVersion) + ", the file has " +
                                     std::to_string(schema));
   scenario.name = root.string("name");
-  if (scenario.name.empty() || scenario.name.find('/') != std::string::npos)
-    root.fail("name", "expected a non-empty name without '/', used for the results folder");
+  if (!is_single_folder_name(scenario.name))
+    root.fail("name", "expected a non-empty name without '/' that is not '.' or '..': it names the results folder results/<name>");
   scenario.description = root.string("description", "");
 
   // Gravity: g · N along a unit direction (virtual centrifuge, docs/theory/upscaling_and_pcrm.md §5).
@@ -141,9 +193,10 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
 
   if (auto coupling = root.optional_child("coupling")) {
     CouplingSpec& c = scenario.coupling;
-    c.exchange_interval = coupling->integer("exchange_interval", 1, 1);
-    c.continuum_steps_per_exchange = coupling->integer("continuum_steps_per_exchange", 1, 1);
-    if (coupling->has("dt_s")) c.dt_s = coupling->positive("dt_s");
+    // Each exchange is one advance per side, which takes at most kMaxStepsPerAdvance steps (SPEC.md §4).
+    c.exchange_interval = coupling->integer("exchange_interval", 1, 1, protocol::kMaxStepsPerAdvance);
+    c.continuum_steps_per_exchange = coupling->integer("continuum_steps_per_exchange", 1, 1, protocol::kMaxStepsPerAdvance);
+    if (coupling->has("dt_s")) c.dt_s = coupling->number("dt_s", kTimeStepBounds);
     else coupling->accept("dt_s");
     c.force_balance_tolerance = coupling->number("force_balance_tolerance", 1e-9, Bounds{0.0, 1.0, true});
     (void)coupling->choice("scheme", {"serial"}, "serial");
@@ -152,8 +205,9 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
 
   ConfigReader run = root.child("run");
   scenario.run.exchanges = run.integer("exchanges", 1);
-  scenario.run.deadline_s = run.positive("deadline_s", 60.0);
-  scenario.run.startup_timeout_s = run.positive("startup_timeout_s", 20.0);
+  const Bounds wait{0.0, kLongestWaitSeconds, true};
+  scenario.run.deadline_s = run.number("deadline_s", 60.0, wait);
+  scenario.run.startup_timeout_s = run.number("startup_timeout_s", 20.0, wait);
   scenario.run.snapshot_every = run.integer("snapshot_every", 0, 0);
   if (auto stop = run.optional_child("stop_when")) {
     scenario.run.stop_unbalanced_force_ratio = stop->number("unbalanced_force_ratio", Bounds{0.0, 1.0, true});
@@ -166,6 +220,7 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   scenario.output_directory = fs::path("results") / scenario.name;
   if (auto output = root.optional_child("output")) {
     scenario.output_directory = output->string("directory", scenario.output_directory.string());
+    if (const auto problem = output_directory_problem(scenario.output_directory, source)) output->fail("directory", *problem);
     output->finish();
   }
   root.finish();

@@ -5,13 +5,14 @@
 #include <set>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/coupler/scenario.hpp"
 
 namespace dfc::coupler {
 
 namespace {
 
 bool valid_label(const std::string& label) {
-  return !label.empty() && std::all_of(label.begin(), label.end(), [](char c) {
+  return is_single_folder_name(label) && std::all_of(label.begin(), label.end(), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
   });
 }
@@ -35,7 +36,7 @@ std::vector<ScenarioVariant> expand_variants(const nlohmann::json& document) {
       if (item.key() != "label" && item.key() != "patch" && item.key() != "comment")
         throw ConfigError(path + "." + item.key(), "unknown key; a variant has \"label\" and \"patch\"");
     if (!entry.contains("label") || !entry.at("label").is_string() || !valid_label(entry.at("label").get<std::string>()))
-      throw ConfigError(path + ".label", "expected a name of letters, digits, '_', '-' or '.' (it names the results folder)");
+      throw ConfigError(path + ".label", "expected a name of letters, digits, '_', '-' or '.', not '.' or '..' (it names the results folder)");
     const std::string label = entry.at("label").get<std::string>();
     if (!labels.insert(label).second) throw ConfigError(path + ".label", "another variant is already labelled \"" + label + "\"");
     const nlohmann::json patch = entry.value("patch", nlohmann::json::object());

@@ -194,7 +194,8 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   using protocol::ProtocolError;
   Simulation& s = sim();
 
-  // 1. Interface velocities (required exactly when an interface exists).
+  // 1. Interface velocities (required exactly when an interface exists); nothing else (SPEC.md §6.1).
+  protocol::require_only(request.inputs, {protocol::field::velocity}, "dem_server");
   std::vector<Vec3> node_velocity;
   if (interface_wall_) {
     const auto n = std::int64_t(s.walls()[*interface_wall_].vertex_count());

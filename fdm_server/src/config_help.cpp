@@ -29,7 +29,7 @@ std::string fdm_config_help() {
   damping         {"local": alpha} local non-viscous damping in [0,1) (default 0.8)
   mass_scaling    true|false (default true): scale inertial masses so any dt is stable (quasi-static);
                   false: real masses, dt must not exceed dt_max
-  threads         OpenMP threads, 0 = OpenMP default (default 0)
+  threads         OpenMP threads, 0..1024, 0 = OpenMP default (default 0)
   boundaries      array (default none) of {"group": <face group>, "condition": c, ...} with c one of
                     "fixed"     all velocity components zero
                     "roller"    zero normal velocity (axis-aligned plane) or zero radial velocity

@@ -123,7 +123,7 @@ protocol::AdvanceResult FdmBackend::advance(const protocol::AdvanceRequest& requ
 }
 
 protocol::AdvanceResult FdmBackend::advance_standalone(const protocol::AdvanceRequest& request) {
-  require_only(request.inputs, {}, "a standalone fdm_server (no coupling section)");
+  protocol::require_only(request.inputs, {}, "a standalone fdm_server (no coupling section)");
   run_steps(request, [] {});
   return {{}, monitors()};
 }
@@ -162,7 +162,7 @@ protocol::AdvanceResult FdmBackend::advance_driven(const protocol::AdvanceReques
   if (!interface_ready_)
     throw ProtocolError(ErrorCode::out_of_order, "a driven fdm_server needs set_interface (the partner's interface mesh) before advance");
   const auto n = std::int64_t(interface_gridpoints_.size());
-  require_only(request.inputs, {protocol::field::velocity}, "a driven fdm_server");
+  protocol::require_only(request.inputs, {protocol::field::velocity}, "a driven fdm_server");
   const std::vector<double> velocity = protocol::require_f64(request.inputs, protocol::field::velocity, n, 3);
   require_finite(velocity, protocol::field::velocity);
   for (std::size_t r = 0; r < interface_gridpoints_.size(); ++r) s.prescribe_velocity(interface_gridpoints_[r], row(velocity, r));

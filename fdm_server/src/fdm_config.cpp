@@ -153,8 +153,7 @@ SolverSettings read_settings(ConfigReader& root) {
     damping->finish();
   }
   settings.mass_scaling = root.boolean("mass_scaling", true);
-  settings.threads = int(root.integer("threads", 0, 0));
-  if (settings.threads > 1024) root.fail("threads", "expected at most 1024 threads");
+  settings.threads = read_thread_count(root);
   return settings;
 }
 

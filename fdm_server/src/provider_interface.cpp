@@ -25,23 +25,13 @@ protocol::InterfaceMesh provider_interface_mesh(const Mesh& mesh, std::span<cons
   return out;
 }
 
-void require_only(std::span<const Array> inputs, std::initializer_list<std::string_view> allowed, const std::string& who) {
-  for (const Array& array : inputs)
-    if (std::find(allowed.begin(), allowed.end(), array.name) == allowed.end()) {
-      std::string list;
-      for (const auto name : allowed) list += (list.empty() ? "'" : ", '") + std::string(name) + "'";
-      throw ProtocolError(ErrorCode::bad_array, "unexpected input array '" + array.name + "': " + who + " takes " +
-                                                    (list.empty() ? std::string("no input arrays") : list));
-    }
-}
-
 void require_finite(std::span<const double> values, std::string_view name) {
   for (const double v : values)
     if (!std::isfinite(v)) throw ProtocolError(ErrorCode::bad_array, "array '" + std::string(name) + "' contains a non-finite value");
 }
 
 ProviderInputs read_provider_inputs(std::span<const Array> inputs, std::int64_t rows, const std::string& who) {
-  require_only(inputs, {protocol::field::force, protocol::field::mass}, who);
+  protocol::require_only(inputs, {protocol::field::force, protocol::field::mass}, who);
   ProviderInputs received;
   received.force = protocol::require_f64(inputs, protocol::field::force, rows, 3);
   require_finite(received.force, protocol::field::force);

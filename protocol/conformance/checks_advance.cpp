@@ -61,6 +61,19 @@ void misshapen_input_is_bad_array(Context& context) {
   expect_step_unchanged(context);
 }
 
+// SPEC.md §6.1 (1.1): an input array the server does not take is refused, named.
+void unexpected_input_is_bad_array(Context& context) {
+  const std::string surplus = "conformance_surplus";
+  protocol::Message request = advance_request(context.step, 1, context.dt);
+  request.arrays = takes_inputs(context) ? zero_inputs(context) : std::vector<protocol::Array>{};
+  request.arrays.push_back(protocol::Array::from_f64(surplus, {1}, std::vector<double>{0.0}));
+  const protocol::Message reply = context.request(std::move(request));
+  expect_error(reply, {"BAD_ARRAY"});
+  const std::string message = reply.body["message"].get<std::string>();
+  expect(message.find(surplus) != std::string::npos, "the BAD_ARRAY message does not name the array '" + surplus + "': \"" + message + "\"");
+  expect_step_unchanged(context);
+}
+
 /// The advanced reply's outputs per SPEC.md §6.1 and its monitors.
 void expect_outputs(const Context& context, const protocol::Message& reply) {
   if (context.provides_interface) {
@@ -156,6 +169,8 @@ std::vector<Check> advance_checks() {
       {"advance.negative_dt", "advance with dt < 0 gets BAD_MESSAGE", M::configured, M::none, true, negative_dt_is_bad_message},
       {"advance.missing_input", "advance without its interface input gets BAD_ARRAY", M::configured, M::none, true,
        missing_input_is_bad_array},
+      {"advance.unexpected_input", "an input array the server does not take gets BAD_ARRAY naming it", M::configured, M::none, true,
+       unexpected_input_is_bad_array},
       {"advance.wrong_input_shape", "an input with n+1 rows gets BAD_ARRAY naming the array", M::configured, M::none, true,
        misshapen_input_is_bad_array},
       {"advance.one_step", "advance 1 step from 0 gets advanced at step 1 with outputs of SPEC §6.1", M::configured, M::stepped, true,

@@ -75,6 +75,19 @@ void header_over_limit(Context& context) {
   expect_refused(context, header, {}, {"TOO_LARGE"});
 }
 
+// SPEC.md §8 (1.1): a header nested far deeper than 64 levels, yet under
+// max_header_bytes, gets BAD_MESSAGE; a server that parses it into a tree and
+// copies it recursively dies of a stack overflow instead.
+void header_nested_too_deep(Context& context) {
+  constexpr std::size_t kLevels = 100'000;
+  std::string header = context.raw_header("ping").dump();
+  const std::string nested = ",\"deep\":" + std::string(kLevels, '[') + std::string(kLevels, ']');
+  if (header.size() + nested.size() > context.limits.max_header_bytes)
+    throw NotApplicable("max_header_bytes " + std::to_string(context.limits.max_header_bytes) + " is too small for a deeply nested header");
+  header.insert(header.size() - 1, nested);  // before the closing brace
+  expect_error(context.send_frames({header}), {"BAD_MESSAGE"});
+}
+
 void too_many_arrays(Context& context) {
   const std::size_t count = context.limits.max_arrays + 1;
   if (count > kMostArraysTried) throw NotApplicable("max_arrays " + std::to_string(count - 1) + " is too large to exceed in a test");
@@ -142,6 +155,7 @@ std::vector<Check> malformed_message_checks() {
       {"malformed.wrong_protocol", "protocol 'not-dfc' gets BAD_MESSAGE", M::greeted, M::none, true, wrong_protocol_name},
       {"malformed.body_not_object", "a 'body' that is not an object gets BAD_MESSAGE", M::greeted, M::none, true, body_not_object},
       {"limits.header_too_large", "a header of max_header_bytes + 1 bytes gets TOO_LARGE", M::greeted, M::none, true, header_over_limit},
+      {"limits.nesting_too_deep", "a header nested 100 000 levels deep gets BAD_MESSAGE", M::greeted, M::none, true, header_nested_too_deep},
       {"limits.too_many_arrays", "max_arrays + 1 array frames get TOO_LARGE", M::greeted, M::none, true, too_many_arrays},
       {"arrays.count_mismatch", "2 descriptors with 1 frame get BAD_ARRAY", M::greeted, M::none, true, descriptor_count_differs_from_frames},
       {"arrays.length_mismatch", "f64 [3] in a 16-byte frame gets BAD_ARRAY", M::greeted, M::none, true, frame_length_differs_from_shape},

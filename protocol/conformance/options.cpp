@@ -4,6 +4,8 @@
 #include <fstream>
 #include <string_view>
 
+#include "dfc/common/command_line.hpp"
+#include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
 
 namespace dfc::conformance {
@@ -22,16 +24,7 @@ std::string read_file_bytes(const std::string& path) {
 }
 
 std::chrono::milliseconds parse_seconds(const std::string& text) {
-  std::size_t used = 0;
-  double seconds = 0.0;
-  try {
-    seconds = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(seconds) || seconds <= 0.0 || seconds > 3600.0)
-    throw UserError("--timeout needs a number of seconds in (0, 3600], got '" + text + "'");
-  return std::chrono::milliseconds(static_cast<std::int64_t>(std::ceil(seconds * 1000.0)));
+  return milliseconds_from_seconds(parse_number_option("--timeout", text, Bounds{0.0, 3600.0, true}));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "dfc/protocol/array.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "dfc/protocol/error_code.hpp"
@@ -98,6 +99,16 @@ std::vector<double> require_f64(std::span<const Array> arrays, std::string_view 
     throw ProtocolError(ErrorCode::bad_array, "array '" + std::string(name) + "' is " + std::string(dtype_name(array->dtype)) + " " +
                                                   shape_text(array->shape) + ", expected f64 " + shape_text(expected));
   return array->to_f64();
+}
+
+void require_only(std::span<const Array> inputs, std::initializer_list<std::string_view> allowed, const std::string& who) {
+  for (const Array& array : inputs)
+    if (std::find(allowed.begin(), allowed.end(), array.name) == allowed.end()) {
+      std::string list;
+      for (const auto name : allowed) list += (list.empty() ? "'" : ", '") + std::string(name) + "'";
+      throw ProtocolError(ErrorCode::bad_array, "unexpected input array '" + array.name + "': " + who + " takes " +
+                                                    (list.empty() ? std::string("no input arrays") : list));
+    }
 }
 
 }  // namespace dfc::protocol

@@ -4,6 +4,8 @@
 #include <limits>
 #include <set>
 
+#include "dfc/common/json_text.hpp"
+
 namespace dfc::protocol {
 
 std::string encode_header(const Message& message) {
@@ -87,9 +89,19 @@ Message decode(std::span<const std::span<const std::byte>> frames, const Limits&
                             std::to_string(limits.max_array_bytes),
                         std::nullopt);
   const std::string_view text(reinterpret_cast<const char*>(header_frame.data()), header_frame.size());
-  const nlohmann::json header = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (header.is_discarded() || !header.is_object())
-    throw DecodeError(ErrorCode::bad_message, "frame 0 is not a JSON object", std::nullopt);
+  nlohmann::json header;
+  try {
+    // Nesting is limited while parsing: the body is copied below, recursively,
+    // and a header 131 000 levels deep (well under max_header_bytes) overflowed the stack.
+    header = parse_json_text(text);
+  } catch (const JsonTextError& e) {
+    if (e.kind() == JsonTextError::Kind::too_deep)
+      throw DecodeError(ErrorCode::bad_message, "frame 0 nests objects and arrays more than " + std::to_string(kMaxJsonNesting) +
+                                                    " levels deep (at " + (e.key_path().empty() ? "the top level" : e.key_path()) + ")",
+                        std::nullopt);
+    throw DecodeError(ErrorCode::bad_message, "frame 0 is not a JSON object: " + std::string(e.what()), std::nullopt);
+  }
+  if (!header.is_object()) throw DecodeError(ErrorCode::bad_message, "frame 0 is not a JSON object", std::nullopt);
 
   // seq first, so every later error can name the request it answers.
   const std::optional<std::int64_t> seq = integer_field(header, "seq", std::nullopt, true);

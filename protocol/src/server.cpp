@@ -5,6 +5,8 @@
 #include <iostream>
 #include <string_view>
 
+#include "dfc/common/command_line.hpp"
+#include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/server_session.hpp"
@@ -13,6 +15,10 @@
 namespace dfc::protocol {
 
 namespace {
+
+// libzmq's frame cap is 2 x the largest limit in an int64 (transport.cpp), and
+// no array a solver sends needs more than 64 GiB.
+constexpr std::uint64_t kLargestArrayLimit = std::uint64_t(1) << 36;
 
 struct ServerOptions {
   std::string bind = "tcp://127.0.0.1:*";
@@ -53,8 +59,8 @@ std::optional<int> parse_options(int argc, char** argv, const ServerProgram& pro
       return 0;
     }
     if (arg == "--bind") options.bind = value();
-    else if (arg == "--idle-timeout") options.idle_timeout_s = std::stod(value());
-    else if (arg == "--max-array-bytes") options.limits.max_array_bytes = std::stoull(value());
+    else if (arg == "--idle-timeout") options.idle_timeout_s = parse_number_option(arg, value(), Bounds{0.0, kLongestWaitSeconds});
+    else if (arg == "--max-array-bytes") options.limits.max_array_bytes = parse_count_option(arg, value(), 1, kLargestArrayLimit);
     else throw UserError("unknown option '" + std::string(arg) + "'; see " + program.name + " --help");
   }
   return std::nullopt;

@@ -3,12 +3,12 @@
 #include <cmath>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/json_text.hpp"
 #include "dfc/common/version.hpp"
 
 namespace dfc::protocol {
 
 namespace {
-constexpr std::int64_t kMaxStepsPerAdvance = 1'000'000'000;
 
 std::string allowed_list(std::initializer_list<SessionState> allowed) {
   std::string text;
@@ -131,9 +131,15 @@ Message ServerSession::on_configure(const Message& request) {
   if (text == request.body.end() || !text->is_string())
     throw ProtocolError(ErrorCode::bad_message, "configure needs body.section_json: the scenario section as JSON text");
   const std::string& section_text = text->get_ref<const std::string&>();
-  const nlohmann::json section = nlohmann::json::parse(section_text, nullptr, false);
-  if (section.is_discarded() || !section.is_object())
-    throw ProtocolError(ErrorCode::bad_config, "body.section_json is not a JSON object");
+  nlohmann::json section;
+  try {
+    section = parse_json_text(section_text, JsonTextLimits{.reject_duplicate_keys = true});
+  } catch (const JsonTextError& e) {
+    if (e.kind() == JsonTextError::Kind::syntax)
+      throw ProtocolError(ErrorCode::bad_config, "body.section_json is not valid JSON: " + std::string(e.what()));
+    throw ConfigError(e.key_path(), e.reason());
+  }
+  if (!section.is_object()) throw ProtocolError(ErrorCode::bad_config, "body.section_json is not a JSON object");
   nlohmann::json info = backend_.configure(section);
   Message reply = reply_to(request, type::configured);
   reply.body = {{"scenario_hash", fnv1a64_hex(section_text)}, {"info", std::move(info)}};

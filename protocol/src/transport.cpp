@@ -1,6 +1,7 @@
 #include "dfc/protocol/transport.hpp"
 
 #include <algorithm>
+#include <charconv>
 
 namespace dfc::protocol {
 
@@ -8,6 +9,25 @@ void configure_socket(zmq::socket_t& socket, const Limits& limits) {
   socket.set(zmq::sockopt::linger, 0);
   const std::size_t largest = std::max(limits.max_header_bytes, limits.max_array_bytes);
   socket.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(2 * largest + 4096));
+}
+
+std::optional<std::string> endpoint_problem(std::string_view endpoint) {
+  const std::string expected = "expected a ZeroMQ endpoint \"tcp://HOST:PORT\" (e.g. \"tcp://127.0.0.1:5555\") or \"ipc://PATH\", got \"" +
+                               std::string(endpoint) + "\"";
+  if (endpoint.starts_with("ipc://")) {
+    if (endpoint.size() == 6) return expected;
+    return std::nullopt;
+  }
+  if (!endpoint.starts_with("tcp://")) return expected;
+  const std::string_view address = endpoint.substr(6);
+  const auto colon = address.rfind(':');
+  if (colon == std::string_view::npos || colon == 0) return expected + ": the host or port is missing";
+  const std::string_view port_text = address.substr(colon + 1);
+  unsigned port = 0;
+  const auto [end, error] = std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
+  if (port_text.empty() || error != std::errc() || end != port_text.data() + port_text.size() || port < 1 || port > 65535)
+    return expected + ": the port must be a number 1..65535";
+  return std::nullopt;
 }
 
 void send_message(zmq::socket_t& socket, const Message& message, const zmq::message_t* routing_id) {

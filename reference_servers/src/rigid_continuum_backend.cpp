@@ -30,6 +30,8 @@ protocol::InterfaceMesh RigidContinuumBackend::interface_mesh() {
 protocol::AdvanceResult RigidContinuumBackend::advance(const protocol::AdvanceRequest& request) {
   protocol::AdvanceResult result;
   force_received_ = {0.0, 0.0, 0.0};
+  // Fixed nodes ignore the lent mass, but it is an input of this side (SPEC.md §6.1).
+  protocol::require_only(request.inputs, {protocol::field::force, protocol::field::mass}, "rigid_continuum_server");
   if (interface_nodes_ > 0) {
     const std::vector<double> force = protocol::require_f64(request.inputs, protocol::field::force, interface_nodes_, 3);
     // Summation in node order: deterministic, and the same order fdm_server uses.

@@ -2,7 +2,11 @@
 // and errors that name the key path.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/coupler/scenario.hpp"
@@ -90,6 +94,114 @@ TEST(Scenario, EndpointInsteadOfProgram) {
   EXPECT_TRUE(s.participants[0].executable.empty());
   d["participants"]["continuum"]["endpoint"] = "localhost:5555";
   EXPECT_EQ(error_key(d), "participants.continuum.endpoint");
+  // No port: libzmq's connect threw "Invalid argument", reported as an internal error.
+  for (const char* bad : {"tcp://127.0.0.1", "tcp://127.0.0.1:", "tcp://:5555", "tcp://127.0.0.1:0", "tcp://127.0.0.1:65536", "ipc://"}) {
+    d["participants"]["continuum"]["endpoint"] = bad;
+    EXPECT_EQ(error_key(d), "participants.continuum.endpoint") << bad;
+  }
+}
+
+// Issue 20: bounds that `check` must apply because `run` depends on them.
+TEST(Scenario, DurationsStepsAndTimeStepsAreBounded) {
+  const auto with = [](const char* section, const char* key, const nlohmann::json& value) {
+    auto d = minimal();
+    d[section][key] = value;
+    return error_key(d);
+  };
+  // 1e10 s overflowed steady_clock (an instant timeout); 1e300 printed a negative duration.
+  EXPECT_EQ(with("run", "deadline_s", 1e10), "run.deadline_s");
+  EXPECT_EQ(with("run", "deadline_s", 1e300), "run.deadline_s");
+  EXPECT_EQ(with("run", "startup_timeout_s", 1e10), "run.startup_timeout_s");
+  EXPECT_EQ(with("run", "deadline_s", 1800), "(no error)");
+  // More steps per exchange than one advance may take passed check, then spun or failed at run time.
+  EXPECT_EQ(with("coupling", "exchange_interval", 2'000'000'000), "coupling.exchange_interval");
+  EXPECT_EQ(with("coupling", "continuum_steps_per_exchange", 2'000'000'000), "coupling.continuum_steps_per_exchange");
+  EXPECT_EQ(with("coupling", "exchange_interval", 1'000'000'000), "(no error)");
+  EXPECT_EQ(with("coupling", "dt_s", 1e-300), "coupling.dt_s");
+  EXPECT_EQ(with("coupling", "dt_s", 1e-7), "(no error)");
+}
+
+TEST(Scenario, NamesAndOutputFoldersThatWouldOverwriteInputsAreRefused) {
+  auto d = minimal();
+  for (const char* name : {"..", ".", "a/b", ""}) {
+    d["name"] = name;
+    EXPECT_EQ(error_key(d), "name") << name;
+  }
+  d = minimal();
+  const auto cwd = std::filesystem::current_path();
+  for (const std::string& directory : {std::string(""), std::string("."), std::string("./"), std::string(".."), cwd.string(), std::string("/")}) {
+    d["output"] = {{"directory", directory}};
+    EXPECT_EQ(error_key(d), "output.directory") << "'" << directory << "'";
+  }
+  // The scenario file's own folder: its scenario.json would be overwritten.
+  const auto inputs = std::filesystem::temp_directory_path() / "dfc_scenario_inputs";
+  d["output"] = {{"directory", inputs.string()}};
+  try {
+    (void)parse_scenario(d, inputs / "scenario.json", "");
+    ADD_FAILURE() << "the scenario's folder was accepted as output.directory";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key_path(), "output.directory");
+  }
+  d["output"] = {{"directory", "results/mine"}};
+  EXPECT_EQ(error_key(d), "(no error)");
+}
+
+class ScenarioFile : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = std::filesystem::temp_directory_path() / ("dfc_scenario_file_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder_);
+  }
+  void TearDown() override { std::filesystem::remove_all(folder_); }
+
+  std::filesystem::path write(const std::string& text) {
+    const auto path = folder_ / "scenario.json";
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  /// The key path of the ConfigError, or "user error: <message>".
+  static std::string load_error(const std::filesystem::path& path) {
+    try {
+      (void)load_scenarios(path, "");
+    } catch (const ConfigError& e) {
+      return e.key_path();
+    } catch (const UserError& e) {
+      return std::string("user error: ") + e.what();
+    }
+    return "(no error)";
+  }
+
+  std::filesystem::path folder_;
+};
+
+TEST_F(ScenarioFile, DuplicateKeysAreRefusedNamingThem) {
+  std::string text = minimal().dump();
+  text.insert(text.size() - 1, R"(,"name":"again")");
+  EXPECT_EQ(load_error(write(text)), "name");
+}
+
+TEST_F(ScenarioFile, NumberBeyondADoubleIsAKeyedError) {
+  auto document = minimal();
+  document["gravity"] = {{"g_level", 1}};
+  std::string text = document.dump();
+  text.replace(text.find(R"("g_level":1)"), 11, R"("g_level":1e999)");
+  EXPECT_EQ(load_error(write(text)), "gravity.g_level");
+}
+
+TEST_F(ScenarioFile, DeepNestingIsAKeyedErrorNotACrash) {
+  std::string text = minimal().dump();
+  text.insert(text.size() - 1, R"(,"_note":)" + std::string(400'000, '[') + std::string(400'000, ']'));
+  EXPECT_EQ(load_error(write(text)).rfind("_note[0]", 0), 0u);
+}
+
+TEST_F(ScenarioFile, FoldersDevicesAndHugeFilesAreRefusedBeforeReading) {
+  EXPECT_NE(load_error(folder_).find("is a directory"), std::string::npos) << load_error(folder_);
+  EXPECT_NE(load_error("/dev/zero").find("not a regular file"), std::string::npos) << load_error("/dev/zero");
+  const auto huge = folder_ / "huge.json";
+  std::ofstream(huge).close();
+  std::filesystem::resize_file(huge, kMaxScenarioBytes + 1);  // sparse: costs no disk
+  EXPECT_NE(load_error(huge).find("limited to 64 MiB"), std::string::npos) << load_error(huge);
 }
 
 }  // namespace

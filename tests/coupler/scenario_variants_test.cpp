@@ -66,6 +66,9 @@ TEST(ScenarioVariants, MalformedListsNameTheKey) {
   EXPECT_EQ(error_key(d), "variants");
   d["variants"] = {{{"label", "a b"}}};
   EXPECT_EQ(error_key(d), "variants[0].label");
+  // ".." would put the variant's results in the folder above output.directory.
+  d["variants"] = {{{"label", ".."}}};
+  EXPECT_EQ(error_key(d), "variants[0].label");
   d["variants"] = {{{"label", "a"}}, {{"label", "a"}}};
   EXPECT_EQ(error_key(d), "variants[1].label");
   d["variants"] = {{{"label", "a"}, {"patch", 3}}};

@@ -30,6 +30,25 @@ TEST(DemConfig, TheTestBedIsValidAndUsesTheDefaults) {
   EXPECT_EQ(c.threads, 0);
 }
 
+// Issue 20: 100000 threads passed `check` and crashed the server in libgomp;
+// 4294967297 silently became 1.
+TEST(DemConfig, ThreadCountIsBoundedAndNeverWraps) {
+  nlohmann::json c = test::box_bed_config();
+  for (const long long threads : {100'000LL, 4'294'967'297LL, -1LL}) {
+    c["threads"] = threads;
+    EXPECT_EQ(error_of(c).key_path(), "threads") << threads;
+  }
+  c["threads"] = 4;
+  EXPECT_EQ(parse_dem_config(c).threads, 4);
+}
+
+// Issue 20: pile.sides 1e8 exhausted memory with a bare std::bad_alloc.
+TEST(DemConfig, PileSidesAreBounded) {
+  nlohmann::json c = test::box_bed_config();
+  c["pile"] = {{"radius_m", 0.002}, {"tip_z_m", 0.05}, {"length_m", 0.02}, {"sides", 100'000'000}};
+  EXPECT_EQ(error_of(c).key_path(), "pile.sides");
+}
+
 TEST(DemConfig, UnknownContactLawNamesTheKeyAndListsTheRegistry) {
   nlohmann::json c = test::box_bed_config();
   c["contact"]["law"] = "hertz";

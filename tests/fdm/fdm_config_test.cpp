@@ -42,6 +42,15 @@ TEST(FdmConfig, ValidSectionBuildsTheModel) {
   EXPECT_LT(model.solver.zone_stress(0).zz, -1000.0);
 }
 
+// Issue 20: 4294967297 threads wrapped to 1 before the 1024 check saw it.
+TEST(FdmConfig, ThreadCountIsBoundedAndNeverWraps) {
+  nlohmann::json section = valid_section();
+  for (const long long threads : {100'000LL, 4'294'967'297LL, -1LL}) {
+    section["threads"] = threads;
+    EXPECT_EQ(key_path_of_error(section), "threads") << threads;
+  }
+}
+
 TEST(FdmConfig, UnknownKeyIsNamed) {
   nlohmann::json section = valid_section();
   section["gravty_m_s2"] = {0, 0, -9.81};

@@ -2,6 +2,9 @@
 // declares never makes the receiver allocate (checked with AllocationProbe).
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <new>
+
 #include "allocation_probe.hpp"
 #include "codec_test_support.hpp"
 
@@ -82,6 +85,55 @@ TEST(CodecLimits, AllocationProbeSeesLargeAllocations) {
   AllocationProbe probe;
   std::vector<std::byte> big(1 << 20);
   EXPECT_GE(probe.largest(), big.size());
+}
+
+// A volatile sink keeps the compiler from eliding the new/delete pairs below.
+void* volatile allocation_sink = nullptr;
+
+TEST(CodecLimits, AllocationProbeSeesNothrowAndAlignedAllocations) {
+  // libzmq allocates with new (std::nothrow) and over-aligned types use the
+  // aligned forms: the probe must replace them all, or a sanitizer build pairs
+  // its own allocation with our free and aborts before any test runs.
+  struct alignas(256) OverAligned {
+    std::byte bytes[200'000];
+  };
+  {
+    AllocationProbe probe;
+    auto* memory = new (std::nothrow) std::byte[300'000];
+    allocation_sink = memory;
+    EXPECT_GE(probe.largest(), 300'000u);
+    delete[] memory;
+  }
+  {
+    AllocationProbe probe;
+    auto* aligned = new OverAligned;
+    allocation_sink = aligned;
+    EXPECT_GE(probe.largest(), sizeof(OverAligned));
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(aligned) % alignof(OverAligned), 0u);
+    delete aligned;
+  }
+  {
+    AllocationProbe probe;
+    auto* aligned = new (std::nothrow) OverAligned;
+    allocation_sink = aligned;
+    EXPECT_GE(probe.largest(), sizeof(OverAligned));
+    delete aligned;
+  }
+}
+
+// SPEC.md §8 (1.1): a header nested far deeper than kMaxJsonNesting yet under
+// max_header_bytes is BAD_MESSAGE. Decoding it used to copy the body
+// recursively and kill dem_server and fdm_server with a stack overflow.
+TEST(CodecLimits, HeaderNestedTooDeepIsBadMessageNotACrash) {
+  constexpr std::size_t kLevels = 131'000;
+  const std::string deep = R"({"protocol":"dfc","version":"1.0","type":"ping","seq":1,"body":{"x":)" + std::string(kLevels, '[') +
+                           std::string(kLevels, ']') + "}}";
+  ASSERT_LT(deep.size(), Limits{}.max_header_bytes);
+  EXPECT_EQ(decode_error_code({deep}), ErrorCode::bad_message);
+  // 64 levels (the header object is the first) still decode.
+  const std::string at_limit = R"({"protocol":"dfc","version":"1.0","type":"ping","seq":1,"body":{"x":)" + std::string(62, '[') +
+                               std::string(62, ']') + "}}";
+  EXPECT_NO_THROW((void)decode_texts({at_limit}, Limits{}));
 }
 
 }  // namespace

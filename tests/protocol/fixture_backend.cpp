@@ -3,6 +3,7 @@
 #include <array>
 #include <chrono>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <thread>
 
@@ -20,6 +21,9 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "shape") return Breakage::wrong_output_shape;
   if (name == "crash") return Breakage::crash_in_advance;
   if (name == "hang") return Breakage::hang_in_advance;
+  if (name == "no-force-monitor") return Breakage::no_force_monitor;
+  if (name == "nan-velocity") return Breakage::nan_velocity;
+  if (name == "huge-particle-count") return Breakage::huge_particle_count;
   return std::nullopt;
 }
 
@@ -46,6 +50,7 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
     }
   velocity_.assign(mesh_.coordinates.size(), 0.0);
   displacement_.assign(mesh_.coordinates.size(), 0.0);
+  if (breakage_ == Breakage::huge_particle_count) monitors_ = {{"particle_count", 2e10}};
   return {{"dt_suggested", 1e-3}, {"dt_max", 1e-2}};
 }
 
@@ -55,9 +60,13 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::crash_in_advance: std::abort();
     case Breakage::hang_in_advance: std::this_thread::sleep_for(std::chrono::hours(1)); break;
     case Breakage::none:
-    case Breakage::wrong_output_shape: break;
+    case Breakage::wrong_output_shape:
+    case Breakage::no_force_monitor:
+    case Breakage::nan_velocity:
+    case Breakage::huge_particle_count: break;
   }
   const std::int64_t n = mesh_.node_count();
+  require_only(request.inputs, {field::force, field::mass}, "conformance_fixture_server");
   const std::vector<double> force = require_f64(request.inputs, field::force, n, 3);
   std::vector<double> lumped(static_cast<std::size_t>(n), 0.0);
   if (find_array(request.inputs, field::mass) != nullptr) lumped = require_f64(request.inputs, field::mass, n, 0);
@@ -73,6 +82,8 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     kinetic += 0.5 * mass * velocity_[k] * velocity_[k];
   }
   monitors_ = {{"unbalanced_force_ratio", 0.0}, {"kinetic_energy_j", kinetic}, {"interface_force_received", received}};
+  if (breakage_ == Breakage::no_force_monitor) monitors_.erase("interface_force_received");
+  if (breakage_ == Breakage::nan_velocity) velocity_.back() = std::numeric_limits<double>::quiet_NaN();
   AdvanceResult result;
   result.monitors = monitors_;
   if (breakage_ == Breakage::wrong_output_shape) {

@@ -16,10 +16,13 @@ enum class Breakage {
   throw_in_advance,    ///< advance throws std::runtime_error (an INTERNAL error reply)
   wrong_output_shape,  ///< advance returns velocity [n,2] instead of [n,3]
   crash_in_advance,    ///< advance aborts the process
-  hang_in_advance      ///< advance never returns
+  hang_in_advance,     ///< advance never returns
+  no_force_monitor,    ///< advance omits the monitor interface_force_received
+  nan_velocity,        ///< advance returns a NaN in its velocity
+  huge_particle_count  ///< monitors claim 2e10 particles, more than any snapshot could hold
 };
 
-/// "throw", "shape", "crash", "hang"; nullopt for anything else.
+/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count"; nullopt for anything else.
 [[nodiscard]] std::optional<Breakage> breakage_from_name(std::string_view name) noexcept;
 
 class FixtureBackend final : public SolverBackend {

@@ -57,6 +57,8 @@ class ConfigReader {
   [[nodiscard]] double positive(std::string_view key, double fallback);
   [[nodiscard]] std::int64_t integer(std::string_view key, std::int64_t min_value = std::numeric_limits<std::int64_t>::min());
   [[nodiscard]] std::int64_t integer(std::string_view key, std::int64_t fallback, std::int64_t min_value);
+  /// Optional integer in [min_value, max_value].
+  [[nodiscard]] std::int64_t integer(std::string_view key, std::int64_t fallback, std::int64_t min_value, std::int64_t max_value);
   [[nodiscard]] std::array<double, 3> vec3(std::string_view key);
   [[nodiscard]] std::array<double, 3> vec3(std::string_view key, std::array<double, 3> fallback);
   [[nodiscard]] std::vector<double> numbers(std::string_view key, Bounds bounds = {});
@@ -90,12 +92,23 @@ class ConfigReader {
  private:
   const nlohmann::json* find(std::string_view key);
   const nlohmann::json& require(std::string_view key, std::string_view expected);
+  std::int64_t integer_in(std::string_view key, std::int64_t min_value, std::int64_t max_value);
   double checked_number(std::string_view key, const nlohmann::json& value, Bounds bounds) const;
 
   const nlohmann::json* object_;
   std::string path_;
   std::set<std::string, std::less<>> known_;
 };
+
+/// "a number in [0, 1]", "a positive number", ...: what `bounds` allow, for messages.
+[[nodiscard]] std::string describe_bounds(Bounds bounds);
+
+/// Most threads a solver section may ask for: more than any machine we run on
+/// has, few enough that the OpenMP runtime can create them.
+inline constexpr std::int64_t kMaxThreads = 1024;
+
+/// The optional key "threads" of a solver section: 0 (the OpenMP default) to kMaxThreads.
+[[nodiscard]] int read_thread_count(ConfigReader& section);
 
 /// Canonical serialisation used for hashing (sorted keys, no whitespace).
 [[nodiscard]] std::string canonical_json(const nlohmann::json& value);

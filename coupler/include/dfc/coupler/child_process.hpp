@@ -7,6 +7,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <functional>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -28,7 +29,8 @@ class ChildProcess {
 
   /// Waits for the line "DFC-LISTENING <endpoint>" on stdout; returns the
   /// endpoint. Throws dfc::UserError if the process exits or prints nothing in time.
-  std::string wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label);
+  /// `while_waiting` runs every 100 ms and may throw to give up (e.g. on Ctrl-C).
+  std::string wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label, const std::function<void()>& while_waiting);
 
   /// nullopt while running; otherwise a description ("exited with status 3",
   /// "was killed by signal 9 (Killed)"). Reaps the child.

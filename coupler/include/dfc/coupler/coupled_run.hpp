@@ -24,10 +24,11 @@ struct RunOptions {
   const std::atomic<bool>* stop_requested = nullptr;  ///< set by SIGINT/SIGTERM: stop after the current exchange
 };
 
-/// Runs the scenario. Returns the process exit status: 0 success, 1 a
-/// participant failed (message printed), 130 stopped by a signal. Throws
+/// Runs the scenario; progress and the summary go to `log`, failures to
+/// `error_log`. Returns the process exit status: 0 success, 1 a participant
+/// failed (message printed), 130 stopped by a signal. Throws
 /// dfc::ConfigError / dfc::UserError for bad input found before the first step.
-int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostream& log);
+int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostream& log, std::ostream& error_log);
 
 /// `coupler check`: validates the scenario and every participant's section by
 /// starting each server and configuring it (no step is run). Throws

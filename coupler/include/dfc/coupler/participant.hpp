@@ -2,6 +2,7 @@
 // Participant: one solver of the run, started by the coupler or reached at an
 // endpoint, behind a protocol client. Knows how to name itself in errors and
 // notices when its process dies while the coupler waits for it.
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -24,11 +25,38 @@ class ParticipantFailure : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The user asked the run to stop (Ctrl-C, SIGTERM) and the server being
+/// waited for did not answer within StopRequest's grace.
+class RunInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Ctrl-C while the coupler waits for a server. The waits of the run may go on
+/// for kGrace after the request, so that a responsive server finishes the
+/// current exchange and the final snapshot; after that every wait ends with
+/// RunInterrupted, so a hung server cannot hold the run for its whole deadline
+/// (up to 30 min). Shared by the participants of one run: one grace in all.
+class StopRequest {
+ public:
+  static constexpr std::chrono::milliseconds kGrace{500};
+  /// `flag` (may be null: never) is set by the signal handler.
+  explicit StopRequest(const std::atomic<bool>* flag) : flag_(flag) {}
+  [[nodiscard]] bool requested() const noexcept { return flag_ != nullptr && flag_->load(); }
+  /// Throws RunInterrupted naming `pending` (what the run is busy with) once the grace has passed.
+  void check(const std::string& pending);
+
+ private:
+  const std::atomic<bool>* flag_;
+  std::optional<std::chrono::steady_clock::time_point> first_seen_;
+};
+
 class Participant {
  public:
   /// Starts the server (or connects to spec.endpoint). Server logs go to `log_dir`.
+  /// Every wait for it gives up through `stop` (which must outlive this).
   Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-              std::chrono::milliseconds startup_timeout);
+              std::chrono::milliseconds startup_timeout, StopRequest& stop);
 
   /// hello, then checks the capability the slot needs (SPEC.md §4.1).
   void hello(std::chrono::milliseconds deadline);
@@ -36,7 +64,8 @@ class Participant {
   /// whose key path starts at the scenario root (participants.<slot>.config.<key>).
   nlohmann::json configure(std::chrono::milliseconds deadline);
 
-  /// Throws ParticipantFailure if the started process has exited.
+  /// Throws ParticipantFailure if the started process has exited, RunInterrupted
+  /// if a stop request's grace has passed. Runs every 100 ms while waiting.
   void check_alive();
   /// Asks for shutdown and waits briefly for a clean exit; kills otherwise. Never throws.
   void stop() noexcept;
@@ -52,11 +81,12 @@ class Participant {
   [[nodiscard]] bool has(std::string_view capability) const;
 
   /// Turns an exception thrown while talking to this participant into a
-  /// ParticipantFailure with the full story (rethrows ConfigError/UserError unchanged).
+  /// ParticipantFailure with the full story (rethrows ConfigError and RunInterrupted unchanged).
   [[noreturn]] void fail(const std::exception& error, const std::string& doing);
 
  private:
   ParticipantSpec spec_;
+  StopRequest* stop_;
   std::unique_ptr<ChildProcess> process_;
   std::unique_ptr<protocol::SolverClient> client_;
   protocol::SolverClient::Hello hello_;

@@ -17,6 +17,9 @@
 namespace dfc::coupler {
 
 inline constexpr int kScenarioSchemaVersion = 1;
+/// Largest scenario file read: scenarios are a few kB; this refuses a mistaken
+/// path (a data dump) before it is read into memory.
+inline constexpr std::uintmax_t kMaxScenarioBytes = std::uintmax_t(64) << 20;
 
 /// One solver process the coupler talks to. The slot decides the role:
 /// "dem" is the side driven by interface velocities (accepts_interface),
@@ -72,6 +75,16 @@ struct Scenario {
 /// PATH). Throws dfc::ConfigError (key path + reason; a variant's error names
 /// its label) or dfc::UserError.
 [[nodiscard]] std::vector<Scenario> load_scenarios(const std::filesystem::path& path, const std::filesystem::path& bin_dir);
+
+/// True for a name that can be one folder of a path: not empty, no '/', not
+/// "." or ".." (scenario names and variant labels name results folders).
+[[nodiscard]] bool is_single_folder_name(std::string_view name);
+
+/// Why the results must not go to `directory`, or nullopt: it is empty, the
+/// working folder or one above it, or the folder of `scenario_source`, where
+/// the results (scenario.json, results.h5, logs/) would overwrite the user's files.
+[[nodiscard]] std::optional<std::string> output_directory_problem(const std::filesystem::path& directory,
+                                                                  const std::filesystem::path& scenario_source);
 
 /// Same, from an already-parsed document.
 [[nodiscard]] Scenario parse_scenario(const nlohmann::json& document, const std::filesystem::path& source, const std::filesystem::path& bin_dir);

@@ -31,9 +31,6 @@ struct ProviderInputs {
 /// in the message ("a provider fdm_server").
 [[nodiscard]] ProviderInputs read_provider_inputs(std::span<const protocol::Array> inputs, std::int64_t rows, const std::string& who);
 
-/// Throws ProtocolError(bad_array) for an input array not in `allowed`.
-void require_only(std::span<const protocol::Array> inputs, std::initializer_list<std::string_view> allowed, const std::string& who);
-
 /// Throws ProtocolError(bad_array) when `values` of array `name` holds a NaN or infinity.
 void require_finite(std::span<const double> values, std::string_view name);
 

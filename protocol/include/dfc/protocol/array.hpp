@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <span>
 #include <string>
@@ -44,5 +45,10 @@ struct Array {
 /// The array called `name`, checked to be f64 of shape [rows, cols] (cols = 0: 1-D of length rows).
 /// Throws ProtocolError(BAD_ARRAY) naming the array and the expected shape.
 [[nodiscard]] std::vector<double> require_f64(std::span<const Array> arrays, std::string_view name, std::int64_t rows, std::int64_t cols);
+
+/// Throws ProtocolError(BAD_ARRAY) naming the first array of `inputs` not in
+/// `allowed` (SPEC.md §6.1: a server refuses input arrays it does not take);
+/// `who` names the receiver in the message ("a driven fdm_server").
+void require_only(std::span<const Array> inputs, std::initializer_list<std::string_view> allowed, const std::string& who);
 
 }  // namespace dfc::protocol

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <zmq.hpp>
@@ -18,6 +20,11 @@ namespace dfc::protocol {
 /// over-limit frame still reaches the codec and gets a TOO_LARGE reply while a
 /// absurdly large one is dropped by libzmq before it is buffered.
 void configure_socket(zmq::socket_t& socket, const Limits& limits);
+
+/// Why a client cannot connect to `endpoint`, or nullopt: it must be
+/// "tcp://HOST:PORT" (PORT 1..65535) or "ipc://PATH". libzmq would otherwise
+/// throw a bare "Invalid argument" from connect.
+[[nodiscard]] std::optional<std::string> endpoint_problem(std::string_view endpoint);
 
 /// Sends `message` (header frame + one frame per array), preceded by
 /// `routing_id` when replying from a ROUTER socket.
