@@ -10,7 +10,7 @@ the group /profiles/ with, against depth below the surface:
   sigma_v_fdm_pa, sigma_h_fdm_pa  FDM: mean zone stress of the zones whose centroid lies in the slice
   sigma_v_theory_pa, sigma_h_theory_pa  gamma (z_s - z) + q and K0 times it (gamma, K0, q as generated)
 
-all from the last snapshot, and a PNG of them (the seed-000 Fig. 3 plot).
+all from the last snapshot, and a PNG of them (as Fig. 3 of Zheng et al. 2023, docs/references.md).
 
     tools/stress_profiles.py RESULTS.h5 [--png FILE]
 

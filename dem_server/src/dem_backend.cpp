@@ -101,6 +101,7 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   if (const auto& gen = model_.generation) {
     info["generation"] = {{"rev_particles", gen->rev.spheres.size()},
                           {"rev_bonds", gen->rev.bonds},
+                          {"rev_damaged_bonds", gen->rev.damaged_bonds},
                           {"rev_porosity", gen->rev.porosity},
                           {"rev_stress_pa", to_json(gen->rev.stress)},
                           {"rev_steps", gen->rev.steps},

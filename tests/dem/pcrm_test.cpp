@@ -1,5 +1,5 @@
 // Periodic cell replication (pcrm_replication.hpp) and stress scaling
-// (stress_scaling.hpp) on a small bonded REV of the seed-001 chalk law.
+// (stress_scaling.hpp) on a small bonded REV of the chalk law of Ciantia et al. (2024).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@ namespace dfc::dem {
 namespace {
 
 ContactLawSetting chalk() {
-  // Seed 001 Table 1 (Ciantia et al. 2024, ECSMGE): E*, kappa*, strengths, u_c, theta_c.
+  // Ciantia et al. (2024) Table 1 (docs/references.md): E*, kappa*, strengths, u_c and theta_c (u_c, bond gap at S = 10).
   return make_contact_law({{"law", "damage_bond"}, {"emod_pa", 1.7e9}, {"kratio", 5}, {"friction", 0.5}, {"bond_emod_pa", 1.7e9},
                            {"bond_kratio", 5}, {"ten_pa", 1e6}, {"com_pa", 5e7}, {"coh_pa", 2e6}, {"ucn_m", 2e-4}, {"ucs_m", 2e-4},
                            {"theta_c_rad", 0.006}, {"bond_gap_m", 2.62e-4}});

@@ -47,7 +47,7 @@ GeneratedBody generate_pcrm(const PcrmConfig& config, const SimulationSettings& 
   const auto t0 = std::chrono::steady_clock::now();
   out.rev = prepare_rev(rev_spec, settings, "particles.rev");
   out.rev_seconds = seconds_since(t0);
-  std::cerr << "dem_server: pcrm REV: " << out.rev.spheres.size() << " spheres, " << out.rev.bonds << " bonds, porosity " << out.rev.porosity
+  std::cerr << "dem_server: pcrm REV: " << out.rev.spheres.size() << " spheres, " << out.rev.bonds << " bonds (and " << out.rev.damaged_bonds << " damaged), porosity " << out.rev.porosity
             << ", stress [" << out.rev.stress.x << ", " << out.rev.stress.y << ", " << out.rev.stress.z << "] Pa, " << out.rev.steps << " steps, "
             << out.rev_seconds << " s" << std::endl;
 

@@ -79,6 +79,7 @@ PreparedRev prepare_rev(const RevSpec& spec, SimulationSettings settings, const 
   rev.stress = measure_cell_stress(sim).diagonal();
   rev.porosity = cell_porosity(p, rev.cell);
   rev.bonds = sim.bond_counts().intact;
+  rev.damaged_bonds = sim.bond_counts().damaged;
   rev.steps = expansion.steps + unbonded.steps + bonded.steps + 2;
   return rev;
 }

@@ -59,6 +59,7 @@ struct PreparedRev {
   Vec3 stress;                           ///< Pa, compression positive, cell stress diagonal at the end
   double porosity = 0.0;                 ///< 1 - sphere volume / cell volume
   std::int64_t bonds = 0;                ///< intact bonds
+  std::int64_t damaged_bonds = 0;        ///< bonds that yielded (D > 0) under the deviatoric reference state
   std::int64_t steps = 0;                ///< all stages
   double dt = 0.0;                       ///< s, the step of the servo stages
 };
