@@ -9,6 +9,7 @@
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/pcrm_replication.hpp"
 #include "dfc/dem/rev_preparation.hpp"
+#include "dfc/dem/stress_scaling.hpp"
 
 namespace dfc::dem {
 namespace {
@@ -78,6 +79,77 @@ TEST(Pcrm, ReplicatedTwiceEachWayTheBodyHasTheRevsStressAndEquilibrium) {
   EXPECT_NEAR(s.sigma[0][0], r.stress.x, 1e-9 * r.stress.z);
   EXPECT_EQ(sim.bond_counts().intact, 8 * r.bonds);
   EXPECT_LT(measure(sim).unbalanced_force_ratio, 0.05);  // the REV's own tolerance
+}
+
+}  // namespace
+}  // namespace dfc::dem
+
+namespace dfc::dem {
+namespace {
+
+/// A bond loaded elastically for 50 steps (compression, shear in two
+/// directions, bending, twist), then evaluated with no further motion.
+template <class Law>
+ContactForce loaded_bond(const Law& law, std::vector<double>& h, bool load) {
+  ContactKinematics k;
+  k.normal = {0.0, 0.0, 1.0};
+  k.overlap = 1e-7;
+  k.radius_first = k.radius_second = 1e-3;
+  k.effective_mass = 1e-6;
+  k.dt = 1e-6;
+  if (load) {
+    set_bond_state(h.data(), BondState::intact);
+    k.relative_velocity = {1e-3, -5e-4, -2e-3};
+    k.relative_angular_velocity = {0.05, -0.03, 0.02};
+    for (int s = 0; s < 50; ++s) (void)law.evaluate(k, h.data());
+  }
+  k.relative_velocity = {};
+  k.relative_angular_velocity = {};
+  return law.evaluate(k, h.data());
+}
+
+template <class Law>
+void expect_scaling_scales_the_load(const ContactLawSetting& setting) {
+  const Law& law = std::get<Law>(setting.law);
+  std::vector<double> h(Law::history_size, 0.0);
+  const ContactForce before = loaded_bond(law, h, true);
+  ASSERT_EQ(bond_state(h.data()), BondState::intact);  // elastic: the load is small against the strengths
+  // One pair whose contact point is 0.6 m below a surface at z = 1 under
+  // gamma = 1e4 N/m3: sigma_v = 6 kPa against a reference of 10 kPa.
+  ReplicatedBody body;
+  body.stride = Law::history_size;
+  body.spheres = {{{0.0, 0.0, 0.4 - 1e-3}, 1e-3}, {{0.0, 0.0, 0.4 + 1e-3}, 1e-3}};
+  body.id = {0, 1};
+  body.pairs = {{0, 1}};
+  body.rows = h;
+  const StressProfile profile{.surface_z = 1.0, .unit_weight = 1e4, .k0 = 0.5, .surcharge = 0.0};
+  const StressScalingReport report = scale_to_profile(body, setting.info->history, profile, 1e4);
+  ASSERT_EQ(report.scaled_bonds, 1u);
+  const double lambda = 0.6;
+  EXPECT_DOUBLE_EQ(report.lambda_min, lambda);
+  std::vector<double> scaled = body.rows;
+  const ContactForce after = loaded_bond(law, scaled, false);
+  // The scaled row is the state of the same bond under lambda times the load:
+  // the law, asked again with no motion, returns lambda times the force and
+  // couple (round-off of a few products: 1e-12 relative).
+  EXPECT_LT(norm(after.on_first - lambda * before.on_first), 1e-12 * norm(before.on_first));
+  EXPECT_LT(norm(after.couple_on_first - lambda * before.couple_on_first), 1e-12 * norm(before.couple_on_first));
+  EXPECT_EQ(bond_state(scaled.data()), BondState::intact);
+}
+
+TEST(StressScaling, ScalingADamageBondsHistoryScalesItsForceAndCouple) {
+  expect_scaling_scales_the_load<DamageBondLaw>(chalk());
+}
+
+TEST(StressScaling, ScalingASoftBondsHistoryScalesItsForceAndCouple) {
+  // Zheng et al. (2023) Table 2 (docs/references.md).
+  expect_scaling_scales_the_load<SoftBondLaw>(make_contact_law({{"law", "soft_bond"}, {"emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_coh_pa", 4.5e5},
+                                                                 {"sb_ten_pa", 4.5e5}, {"sb_fa_deg", 32}, {"sb_soft", 100}, {"sb_cut", 0.05}}));
+}
+
+TEST(StressScaling, LawsWithAnOverlapTermCannotBeScaled) {
+  EXPECT_FALSE(test::linear(1e5, 5e4, 0.5, 0.2).intact_force_from_history());
+  EXPECT_TRUE(chalk().intact_force_from_history());
 }
 
 }  // namespace
