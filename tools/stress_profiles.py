@@ -7,7 +7,7 @@ the group /profiles/ with, against depth below the surface:
 
   depth_m                       slice centres (the DEM's horizontal slices, one REV cell high)
   sigma_v_pa, sigma_h_pa        DEM: Love-Weber stress of the particles in each slice (compression positive)
-  sigma_v_fdm_pa, sigma_h_fdm_pa  FDM: mean zone stress of the zones whose centroid lies in the slice
+  sigma_v_fdm_pa, sigma_h_fdm_pa  FDM: mean stress of each layer of zones, interpolated to the slice depths
   sigma_v_theory_pa, sigma_h_theory_pa  gamma (z_s - z) + q and K0 times it (gamma, K0, q as generated)
 
 all from the last snapshot, and a PNG of them (as Fig. 3 of Zheng et al. 2023, docs/references.md).
@@ -36,23 +36,18 @@ def last_snapshot(f, role):
     return group[sorted(group.keys())[-1]]
 
 
-def fdm_profile(snapshot, depth, surface_z, height):
-    """Mean (compression positive) vertical and horizontal zone stress per slice."""
+def fdm_profile(snapshot, depth, surface_z):
+    """Compression-positive vertical and horizontal stress of the FDM at the DEM's
+    slice depths: the mean over each layer of zones (same centroid depth),
+    interpolated linearly between layers (NaN outside them)."""
     nodes = snapshot["node_position"][()]
     zones = snapshot["zone_nodes"][()]
     stress = snapshot["zone_stress"][()]  # xx, xy, xz, yy, yz, zz; tension positive
-    centroid_z = nodes[zones][:, :, 2].mean(axis=1)
-    zone_depth = surface_z - centroid_z
-    v, h = [], []
-    for d in depth:
-        inside = np.abs(zone_depth - d) <= 0.5 * height
-        if not inside.any():
-            v.append(np.nan)
-            h.append(np.nan)
-            continue
-        v.append(-stress[inside, 5].mean())
-        h.append(-0.5 * (stress[inside, 0] + stress[inside, 3]).mean())
-    return np.array(v), np.array(h)
+    zone_depth = np.round(surface_z - nodes[zones][:, :, 2].mean(axis=1), 9)
+    layers = np.unique(zone_depth)
+    v = np.array([-stress[zone_depth == d, 5].mean() for d in layers])
+    h = np.array([-0.5 * (stress[zone_depth == d, 0] + stress[zone_depth == d, 3]).mean() for d in layers])
+    return (np.interp(depth, layers, v, left=np.nan, right=np.nan), np.interp(depth, layers, h, left=np.nan, right=np.nan))
 
 
 def main(argv=None):
@@ -82,9 +77,8 @@ def main(argv=None):
         out["sigma_v_theory_pa"] = gamma * depth + q
         out["sigma_h_theory_pa"] = k0 * out["sigma_v_theory_pa"]
         continuum = last_snapshot(f, "continuum")
-        height = depth[1] - depth[0] if len(depth) > 1 else 2 * depth[0]
         if continuum is not None and "zone_stress" in continuum:
-            out["sigma_v_fdm_pa"], out["sigma_h_fdm_pa"] = fdm_profile(continuum, depth, generation["surface_z_m"], height)
+            out["sigma_v_fdm_pa"], out["sigma_h_fdm_pa"] = fdm_profile(continuum, depth, generation["surface_z_m"])
         if "profiles" in f:
             del f["profiles"]
         group = f.create_group("profiles")
