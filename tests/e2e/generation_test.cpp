@@ -50,9 +50,10 @@ const GenerationRun& small_run() {
 // where the forces scaled to nearly zero meet the few spheres above, and the
 // floor's boundary layer).
 //  - sigma_h within 5 % (the criterion asked for); sigma_v within 7 %: it
-//    measures 5-6 % low, because the core hangs about an eighth of its weight
-//    on the coupling wall by friction while it settles onto its floor
-//    (docs/dem_generation.md §5: the figures and what would remove it).
+//    measures 5-6 % low, because this small core (eight diameters in radius)
+//    hangs about an eighth of its weight on the coupling wall by friction while
+//    it settles onto its floor (docs/dem_generation.md §5; the paper-size model
+//    of §6 is within 5 %, rms 2 %).
 TEST(Generation, StressFollowsTheSelfWeightFieldAtNg) {
   const GenerationRun& run = small_run();
   ASSERT_TRUE(run.summary.value("equilibrium_reached", false)) << run.summary.dump();
