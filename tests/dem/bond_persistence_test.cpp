@@ -36,6 +36,25 @@ TEST(BondPersistence, PairsWithinTheBondGapAreBondedAtStart) {
   EXPECT_EQ(apart.bond_counts().intact, 0);
 }
 
+/// Bonds installed in a touching simple cubic lattice of n^3 spheres of radius r.
+std::int64_t lattice_bonds(double r, int n) {
+  Simulation sim(SimulationSettings{.particle_law = pbond(1e12, 0.0), .gravity = {}, .local_damping = 0.0, .skin = 0.1 * r, .threads = 1});
+  std::int64_t id = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) sim.add_sphere(id++, {0.1 + 2 * r * i, 0.3 + 2 * r * j, 0.7 + 2 * r * k}, r, 2650);
+  sim.step(1e-9);
+  return sim.bond_counts().intact;
+}
+
+TEST(BondPersistence, TouchingSpheresAreBondedWhateverTheirSize) {
+  // With bond_gap_m = 0, whether a touching pair is bonded used to depend on
+  // the last bit of |x_j - x_i| - r_i - r_j: at r = 3.7 mm about half of the
+  // lattice's contacts were lost to round-off. The bonding test allows a gap
+  // of 1e-9 (r_i + r_j), far below any physical bond gap and far above round-off.
+  for (const double r : {1e-3, 3.7e-3, 1.1e-4, 0.3}) EXPECT_EQ(lattice_bonds(r, 4), 3 * 4 * 4 * 3) << "r = " << r;
+}
+
 TEST(BondPersistence, BondSurvivesSeparationBeyondTheSkinAndPullsBack) {
   // Bond k = Ebar* / (2R) * pi R^2 = 1.57e3 N/m, m_eff = 5.5e-6 kg: the
   // pair opens by v_rel / omega = 1 / 1.7e4 = 59 um, far beyond the 1 um skin.

@@ -16,6 +16,12 @@
 
 namespace dfc::dem {
 
+namespace {
+/// Relative tolerance of the bonding test (install_bonds): far above the
+/// round-off of a centre distance, far below any physical bond gap.
+constexpr double bonding_round_off = 1e-9;
+}  // namespace
+
 Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)) {
   if (settings_.particle_law.info == nullptr) throw UserError("the simulation needs a particle contact law");
   if (!(settings_.local_damping >= 0.0 && settings_.local_damping < 1.0)) throw UserError("local damping must be in [0, 1)");
@@ -220,8 +226,12 @@ void Simulation::install_bonds() {
   const PeriodicSpace space = cell_ ? PeriodicSpace(*cell_) : PeriodicSpace();  // no cell: the plain difference
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::uint32_t i = pairs_.first[k], j = pairs_.second[k];
-    const double surface_gap = norm(space.branch(particles_.position[i], particles_.position[j])) - particles_.radius[i] - particles_.radius[j];
-    if (surface_gap <= gap) set_bond_state(pairs_.row(k), BondState::intact);
+    const double radii = particles_.radius[i] + particles_.radius[j];
+    const double surface_gap = norm(space.branch(particles_.position[i], particles_.position[j])) - radii;
+    // A touching pair is bonded whatever its size: |x_j - x_i| - r_i - r_j of
+    // spheres placed exactly in contact is a few ulps either side of 0, so
+    // the gap allows bonding_round_off (r_i + r_j) on top of bond_gap_m.
+    if (surface_gap <= gap + bonding_round_off * radii) set_bond_state(pairs_.row(k), BondState::intact);
   }
   bonds_installed_ = true;
   install_requested_ = false;
