@@ -8,6 +8,7 @@
 //   units["pile_force_n"] = protocol::unit::newton;
 //   info[protocol::monitor_units_key] = units;
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ inline constexpr const char* pascal = "Pa";
 inline constexpr const char* joule = "J";
 inline constexpr const char* watt = "W";
 }  // namespace unit
+
+/// Numbers a monitor value holds: 1 for a number, 3 for [x, y, z] (SPEC.md
+/// §6.3), 0 for anything else (not a valid monitor value).
+[[nodiscard]] std::size_t monitor_width(const nlohmann::json& value);
 
 /// Units of the monitors SPEC.md §6.3 defines for every server (unbalanced
 /// force ratio, kinetic energy, step count, interface force and power); a
