@@ -1,6 +1,7 @@
 #include "dfc/common/hdf5_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <memory>
 #include <utility>
@@ -196,23 +197,23 @@ std::string Dataset::element_type_name() const {
 void Dataset::append_f64(std::span<const double> values) {
   if (values.empty()) return;
   const Handle old_space = dataspace_of(id());
-  std::vector<hsize_t> dims = extent_of(old_space.get());
-  if (dims.empty() || dims.size() > 2) throw Error("append_f64: dataset " + object_name(id()) + " is neither 1-D nor 2-D");
-  const hsize_t width = dims.size() == 2 ? dims[1] : 1;
+  const int rank = H5Sget_simple_extent_ndims(old_space.get());
+  if (rank != 1 && rank != 2) throw Error("append_f64: dataset " + object_name(id()) + " is neither 1-D nor 2-D");
+  // Fixed-size [rows, width] (width 1 and unused for a 1-D dataset).
+  std::array<hsize_t, 2> extent{0, 1};
+  check(H5Sget_simple_extent_dims(old_space.get(), extent.data(), nullptr), "cannot read the extent of dataset " + object_name(id()));
+  const hsize_t width = extent[1];
   if (width == 0 || values.size() % width != 0)
     throw Error("append_f64: " + std::to_string(values.size()) + " values are not whole rows of " + std::to_string(width) + " for dataset " +
                 object_name(id()));
-  // The appended block: rows [dims[0], dims[0] + rows) and, for a 2-D dataset, every column.
-  std::vector<hsize_t> start(dims.size(), 0);
-  start[0] = dims[0];
-  std::vector<hsize_t> count = dims;
-  count[0] = values.size() / width;
-  dims[0] += count[0];
-  check(H5Dset_extent(id(), dims.data()), "cannot extend dataset " + object_name(id()));
+  // The appended block: rows [old rows, old rows + count) and, for a 2-D dataset, every column.
+  const std::array<hsize_t, 2> start{extent[0], 0};
+  const std::array<hsize_t, 2> count{values.size() / width, width};
+  extent[0] += count[0];
+  check(H5Dset_extent(id(), extent.data()), "cannot extend dataset " + object_name(id()));
   const Handle file_space = dataspace_of(id());
   check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), "cannot select the appended rows");
-  const Handle memory_space =
-      make_handle(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose, "cannot create a memory dataspace");
+  const Handle memory_space = make_handle(H5Screate_simple(rank, count.data(), nullptr), H5Sclose, "cannot create a memory dataspace");
   check(H5Dwrite(id(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, values.data()),
         "cannot append to dataset " + object_name(id()));
 }
