@@ -1,6 +1,7 @@
 #include "dfc/common/hdf5_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <memory>
 #include <utility>
@@ -196,15 +197,23 @@ std::string Dataset::element_type_name() const {
 void Dataset::append_f64(std::span<const double> values) {
   if (values.empty()) return;
   const Handle old_space = dataspace_of(id());
-  const std::vector<hsize_t> dims = extent_of(old_space.get());
-  if (dims.size() != 1) throw Error("append_f64: dataset " + object_name(id()) + " is not one-dimensional");
-  const hsize_t start = dims[0];
-  const hsize_t count = values.size();
-  const hsize_t new_size = start + count;
-  check(H5Dset_extent(id(), &new_size), "cannot extend dataset " + object_name(id()));
+  const int rank = H5Sget_simple_extent_ndims(old_space.get());
+  if (rank != 1 && rank != 2) throw Error("append_f64: dataset " + object_name(id()) + " is neither 1-D nor 2-D");
+  // Fixed-size [rows, width] (width 1 and unused for a 1-D dataset).
+  std::array<hsize_t, 2> extent{0, 1};
+  check(H5Sget_simple_extent_dims(old_space.get(), extent.data(), nullptr), "cannot read the extent of dataset " + object_name(id()));
+  const hsize_t width = extent[1];
+  if (width == 0 || values.size() % width != 0)
+    throw Error("append_f64: " + std::to_string(values.size()) + " values are not whole rows of " + std::to_string(width) + " for dataset " +
+                object_name(id()));
+  // The appended block: rows [old rows, old rows + count) and, for a 2-D dataset, every column.
+  const std::array<hsize_t, 2> start{extent[0], 0};
+  const std::array<hsize_t, 2> count{values.size() / width, width};
+  extent[0] += count[0];
+  check(H5Dset_extent(id(), extent.data()), "cannot extend dataset " + object_name(id()));
   const Handle file_space = dataspace_of(id());
-  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &start, nullptr, &count, nullptr), "cannot select the appended rows");
-  const Handle memory_space = make_handle(H5Screate_simple(1, &count, nullptr), H5Sclose, "cannot create a memory dataspace");
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), "cannot select the appended rows");
+  const Handle memory_space = make_handle(H5Screate_simple(rank, count.data(), nullptr), H5Sclose, "cannot create a memory dataspace");
   check(H5Dwrite(id(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT, values.data()),
         "cannot append to dataset " + object_name(id()));
 }
@@ -276,14 +285,17 @@ std::vector<std::string> Group::members() const {
   return names;
 }
 
-Dataset Group::create_extendable_f64(const std::string& name, hsize_t chunk_rows) const {
+Dataset Group::create_extendable_f64(const std::string& name, hsize_t chunk_rows, hsize_t width) const {
   silence_error_printing();
-  const hsize_t initial = 0;
-  const hsize_t maximum = H5S_UNLIMITED;
-  const hsize_t chunk = std::max<hsize_t>(chunk_rows, 1);
-  const Handle space = make_handle(H5Screate_simple(1, &initial, &maximum), H5Sclose, "cannot create an extendable dataspace");
+  if (width == 0) throw Error("dataset '" + name + "' needs a width of at least 1");
+  // A width-1 series stays 1-D: existing readers index it as a plain vector.
+  const int rank = width == 1 ? 1 : 2;
+  const hsize_t initial[] = {0, width};
+  const hsize_t maximum[] = {H5S_UNLIMITED, width};
+  const hsize_t chunk[] = {std::max<hsize_t>(chunk_rows, 1), width};
+  const Handle space = make_handle(H5Screate_simple(rank, initial, maximum), H5Sclose, "cannot create an extendable dataspace");
   const Handle dcpl = make_handle(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create a dataset-creation property list");
-  check(H5Pset_chunk(dcpl.get(), 1, &chunk), "cannot set the chunk size of dataset '" + name + "'");
+  check(H5Pset_chunk(dcpl.get(), rank, chunk), "cannot set the chunk size of dataset '" + name + "'");
   return Dataset(make_handle(H5Dcreate2(id(), name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
                              H5Dclose, "cannot create dataset '" + name + "' in " + object_name(id())));
 }

@@ -10,6 +10,8 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 #include <zmq.hpp>
 
@@ -20,6 +22,7 @@
 #include "dfc/coupler/progress_line.hpp"
 #include "dfc/coupler/results_writer.hpp"
 #include "dfc/protocol/message.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 
 namespace dfc::coupler {
 
@@ -206,48 +209,99 @@ std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& con
   return participants;
 }
 
+/// The run's time series: the coupler's own columns and every monitor of
+/// every slot, each labelled with the unit its source declares (SPEC.md §6.3).
+/// A monitor that is a number is a 1-D column; an [x, y, z] one an [N, 3] column.
 class RunRecorder {
  public:
-  RunRecorder(ResultsWriter& writer) : writer_(writer) {}
+  /// `declared_units`: per slot, configure's info.monitor_units (null for a
+  /// server that declares none, e.g. one speaking protocol 1.1).
+  RunRecorder(ResultsWriter& writer, std::map<std::string, nlohmann::json> declared_units)
+      : writer_(writer), declared_units_(std::move(declared_units)) {}
 
   void record(const std::map<std::string, double>& fixed, const std::map<std::string, nlohmann::json>& monitors_by_slot) {
-    std::map<std::string, double> row = fixed;
-    for (const auto& [slot, monitors] : monitors_by_slot)
-      for (const auto& [name, value] : monitors.items())
-        if (value.is_number()) row[slot + "_" + name] = value.get<double>();
-    if (columns_.empty()) {
-      for (const auto& [name, value] : row) columns_.push_back(name);
-      writer_.declare_series(columns_, units_for(columns_));
+    if (columns_.empty()) declare(fixed, monitors_by_slot);
+    std::vector<double> row;
+    for (const Source& column : columns_) {
+      if (column.slot.empty()) {
+        const auto it = fixed.find(column.key);
+        row.push_back(it == fixed.end() ? kNaN : it->second);
+        continue;
+      }
+      // A monitor missing from this reply, or of another shape than at the first row, is recorded as NaN.
+      const auto slot = monitors_by_slot.find(column.slot);
+      const nlohmann::json* value = slot == monitors_by_slot.end() || !slot->second.contains(column.key) ? nullptr : &slot->second[column.key];
+      const bool fits = value != nullptr && protocol::monitor_width(*value) == column.width;
+      if (column.width == 1) row.push_back(fits ? value->get<double>() : kNaN);
+      else
+        for (std::size_t i = 0; i < column.width; ++i) row.push_back(fits ? (*value)[i].get<double>() : kNaN);
     }
-    std::vector<double> values;
-    values.reserve(columns_.size());
-    for (const auto& name : columns_) {
-      const auto it = row.find(name);
-      values.push_back(it == row.end() ? kNaN : it->second);
-    }
-    writer_.append(values);
+    writer_.append(row);
   }
 
  private:
-  static std::map<std::string, std::string> units_for(const std::vector<std::string>& columns) {
-    std::map<std::string, std::string> units;
-    for (const auto& name : columns) {
-      const auto ends = [&](const char* suffix) {
-        const std::string s(suffix);
-        return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
-      };
-      if (ends("_s")) units[name] = "s";
-      else if (ends("_m")) units[name] = "m";
-      else if (ends("_n") || ends("_x") || ends("_y") || ends("_z")) units[name] = "N";
-      else if (ends("_w")) units[name] = "W";
-      else if (ends("_j")) units[name] = "J";
-      else units[name] = "1";
+  /// Where a column's values come from: `fixed[key]` when `slot` is empty, else the slot's monitor `key`.
+  struct Source {
+    std::string slot;
+    std::string key;
+    std::size_t width = 1;
+  };
+
+  /// For a server that declares no units: a guess from the monitor's name
+  /// suffix (SPEC.md §6.3 naming), stored marked as a guess.
+  static std::string unit_guessed_from_name(const std::string& name) {
+    const auto ends = [&](std::string_view suffix) { return name.ends_with(suffix); };
+    if (ends("_s")) return protocol::unit::second;
+    if (ends("_m")) return protocol::unit::metre;
+    if (ends("_n")) return protocol::unit::newton;
+    if (ends("_nm")) return protocol::unit::newton_metre;
+    if (ends("_pa")) return protocol::unit::pascal;
+    if (ends("_w")) return protocol::unit::watt;
+    if (ends("_j")) return protocol::unit::joule;
+    return protocol::unit::dimensionless;
+  }
+
+  /// The unit of `slot`'s monitor `name` as its server declared it, else the guess.
+  SeriesColumn monitor_column(const std::string& slot, const std::string& name, std::size_t width) const {
+    const auto declared = declared_units_.find(slot);
+    if (declared != declared_units_.end() && declared->second.is_object()) {
+      const auto unit = declared->second.find(name);
+      if (unit != declared->second.end() && unit->is_string()) return {slot + "_" + name, unit->get<std::string>(), width};
     }
-    return units;
+    return {slot + "_" + name, unit_guessed_from_name(name), width, true};
+  }
+
+  void declare(const std::map<std::string, double>& fixed, const std::map<std::string, nlohmann::json>& monitors_by_slot) {
+    // The coupler's own columns (coupled_run's `fixed`): their units are its own declaration.
+    static const std::map<std::string, std::string> coupler_units = {
+        {"exchange", protocol::unit::dimensionless},          {"step_dem", protocol::unit::dimensionless},
+        {"step_continuum", protocol::unit::dimensionless},    {"time_s", protocol::unit::second},
+        {"wall_time_s", protocol::unit::second},              {"interface_force_on_dem_x", protocol::unit::newton},
+        {"interface_force_on_dem_y", protocol::unit::newton}, {"interface_force_on_dem_z", protocol::unit::newton},
+        {"interface_force_on_continuum_x", protocol::unit::newton},
+        {"interface_force_on_continuum_y", protocol::unit::newton},
+        {"interface_force_on_continuum_z", protocol::unit::newton}};
+    std::map<std::string, std::pair<Source, SeriesColumn>> by_name;  // columns in name order, as before units were declared
+    for (const auto& [name, value] : fixed) {
+      const auto unit = coupler_units.find(name);
+      SeriesColumn column = unit != coupler_units.end() ? SeriesColumn{name, unit->second} : SeriesColumn{name, unit_guessed_from_name(name), 1, true};
+      by_name.emplace(name, std::pair{Source{"", name, 1}, std::move(column)});
+    }
+    for (const auto& [slot, monitors] : monitors_by_slot)
+      for (const auto& [name, value] : monitors.items())
+        if (const std::size_t width = protocol::monitor_width(value); width > 0)
+          by_name.emplace(slot + "_" + name, std::pair{Source{slot, name, width}, monitor_column(slot, name, width)});
+    std::vector<SeriesColumn> columns;
+    for (auto& [name, entry] : by_name) {
+      columns_.push_back(std::move(entry.first));
+      columns.push_back(std::move(entry.second));
+    }
+    writer_.declare_series(columns);
   }
 
   ResultsWriter& writer_;
-  std::vector<std::string> columns_;
+  std::map<std::string, nlohmann::json> declared_units_;
+  std::vector<Source> columns_;
 };
 
 void write_snapshots(ResultsWriter& writer, std::vector<std::unique_ptr<Participant>>& participants, double time, milliseconds deadline) {
@@ -361,7 +415,9 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
                                   {"protocol", p->info().protocol_version},
                                   {"configured", p->configured_info()}};
     writer = std::make_unique<ResultsWriter>(out_dir / "results.h5", scenario.document, versions);
-    RunRecorder recorder(*writer);
+    std::map<std::string, nlohmann::json> declared_units;
+    for (auto& p : participants) declared_units[p->spec().slot] = p->configured_info().value(protocol::monitor_units_key, nlohmann::json());
+    RunRecorder recorder(*writer, std::move(declared_units));
     write_snapshots(*writer, participants, 0.0, deadline);
     writer->flush();
 

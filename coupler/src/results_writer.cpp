@@ -98,6 +98,8 @@ struct ResultsWriter::State {
   // Time series.
   bool declared = false;
   std::vector<std::string> columns;
+  std::vector<std::size_t> widths;  ///< numbers per row, per column
+  std::size_t row_width = 0;        ///< sum of widths: the size of an appended row
   std::vector<h5::Dataset> column_datasets;
   std::vector<std::vector<double>> pending;  ///< per column, rows not yet written
   std::int64_t rows = 0;
@@ -182,41 +184,62 @@ ResultsWriter::State& ResultsWriter::open_state(const char* operation) const {
 }
 
 void ResultsWriter::declare_series(const std::vector<std::string>& columns, const std::map<std::string, std::string>& units) {
+  const std::set<std::string> names(columns.begin(), columns.end());
+  for (const auto& [column, unit] : units) {
+    if (!names.contains(column)) throw std::invalid_argument("unit given for undeclared time-series column '" + column + "'");
+  }
+  std::vector<SeriesColumn> scalars;
+  for (const std::string& column : columns) {
+    const auto unit = units.find(column);
+    scalars.push_back({column, unit == units.end() ? std::string() : unit->second});
+  }
+  declare_series(scalars);
+}
+
+void ResultsWriter::declare_series(const std::vector<SeriesColumn>& columns) {
   State& s = open_state("declare_series");
   if (s.declared) throw std::logic_error("ResultsWriter::declare_series called twice; the column set is fixed once per run");
   if (columns.empty()) throw std::invalid_argument("ResultsWriter::declare_series needs at least one column");
   std::set<std::string> seen;
-  for (const std::string& column : columns) {
-    require_plain_name(column, "time-series column");
-    if (!seen.insert(column).second) throw std::invalid_argument("time-series column '" + column + "' is declared twice");
-  }
-  for (const auto& [column, unit] : units) {
-    if (!seen.contains(column)) throw std::invalid_argument("unit given for undeclared time-series column '" + column + "'");
+  for (const SeriesColumn& column : columns) {
+    require_plain_name(column.name, "time-series column");
+    if (!seen.insert(column.name).second) throw std::invalid_argument("time-series column '" + column.name + "' is declared twice");
+    if (column.width == 0) throw std::invalid_argument("time-series column '" + column.name + "' has width 0");
   }
 
   const h5::Group group = s.file.root().create_group("timeseries");
-  // HDF5 lists members by name; the declared order is kept here for readers that want it.
-  h5::write_attribute(group.id(), "columns", nlohmann::json(columns).dump());
-  for (const std::string& column : columns) {
-    h5::Dataset dataset = group.create_extendable_f64(column, series_chunk_rows);
-    if (const auto unit = units.find(column); unit != units.end()) h5::write_attribute(dataset.id(), "unit", unit->second);
+  std::vector<std::string> names;
+  for (const SeriesColumn& column : columns) {
+    h5::Dataset dataset = group.create_extendable_f64(column.name, series_chunk_rows, column.width);
+    if (!column.unit.empty()) h5::write_attribute(dataset.id(), "unit", column.unit);
+    if (column.unit_guessed) h5::write_attribute(dataset.id(), "unit_source", std::string("guessed from the name"));
     s.column_datasets.push_back(std::move(dataset));
+    names.push_back(column.name);
+    s.widths.push_back(column.width);
+    s.row_width += column.width;
   }
-  s.columns = columns;
+  // HDF5 lists members by name; the declared order is kept here for readers that want it.
+  h5::write_attribute(group.id(), "columns", nlohmann::json(names).dump());
+  s.columns = std::move(names);
   s.pending.assign(columns.size(), {});
-  for (std::vector<double>& buffer : s.pending) buffer.reserve(rows_per_block);
+  for (std::size_t c = 0; c < columns.size(); ++c) s.pending[c].reserve(rows_per_block * s.widths[c]);
   s.declared = true;
 }
 
 void ResultsWriter::append(const std::vector<double>& row) {
   State& s = open_state("append");
   if (!s.declared) throw std::logic_error("ResultsWriter::append called before declare_series");
-  if (row.size() != s.columns.size())
-    throw std::invalid_argument("ResultsWriter::append: row has " + std::to_string(row.size()) + " values but " +
-                                std::to_string(s.columns.size()) + " columns were declared");
-  for (std::size_t c = 0; c < row.size(); ++c) s.pending[c].push_back(row[c]);
+  if (row.size() != s.row_width)
+    throw std::invalid_argument("ResultsWriter::append: row has " + std::to_string(row.size()) + " values but the " +
+                                std::to_string(s.columns.size()) + " declared columns take " + std::to_string(s.row_width));
+  auto next = row.begin();
+  for (std::size_t c = 0; c < s.columns.size(); ++c) {
+    const auto end = next + static_cast<std::ptrdiff_t>(s.widths[c]);
+    s.pending[c].insert(s.pending[c].end(), next, end);
+    next = end;
+  }
   ++s.rows;
-  if (s.pending.front().size() >= rows_per_block) s.write_pending_rows();
+  if (s.pending.front().size() >= rows_per_block * s.widths.front()) s.write_pending_rows();
 }
 
 std::int64_t ResultsWriter::row_count() const noexcept { return state_ ? state_->rows : 0; }

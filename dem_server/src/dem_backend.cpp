@@ -10,6 +10,7 @@
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
 #include "dfc/dem/region_config.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 
 namespace dfc::dem {
 
@@ -127,7 +128,32 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
     }
     info["preparation"] = p;
   }
+  info[protocol::monitor_units_key] = monitor_units();
   return info;
+}
+
+nlohmann::json DemBackend::monitor_units() const {
+  using namespace protocol::unit;
+  // Every monitor monitors() may send, whatever the section enables: declaring
+  // one that a run never sends is allowed (SPEC.md §6.3) and keeps this list
+  // free of the conditions that choose which ones are sent.
+  nlohmann::json units = protocol::shared_monitor_units();
+  for (const char* count : {"particle_count", "contact_count", "coordination_number", "bonds_intact", "bonds_damaged",
+                            "bonds_broken_tension", "bonds_broken_shear", "axial_strain", "volumetric_strain", "porosity",
+                            "cell_strain_xx", "cell_strain_yy", "cell_strain_zz"})
+    units[count] = dimensionless;
+  for (const char* stress : {"axial_stress_pa", "lateral_stress_pa", "deviatoric_stress_pa", "cell_stress_xx_pa", "cell_stress_yy_pa",
+                             "cell_stress_zz_pa"})
+    units[stress] = pascal;
+  units["total_weight_n"] = newton;
+  units["pile_force_n"] = newton;
+  units["pile_displacement_m"] = metre;
+  units["dt_critical_s"] = second;
+  for (const Wall& wall : simulation().walls()) {
+    units["wall_" + wall.name + "_force_n"] = newton;
+    units["wall_" + wall.name + "_moment_nm"] = newton_metre;
+  }
+  return units;
 }
 
 Simulation& DemBackend::sim() {

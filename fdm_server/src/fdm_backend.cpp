@@ -8,6 +8,7 @@
 #include "dfc/fdm/grid_snapshot.hpp"
 #include "dfc/fdm/interface_matching.hpp"
 #include "dfc/fdm/provider_interface.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 
 namespace dfc::fdm {
 
@@ -63,6 +64,8 @@ nlohmann::json FdmBackend::configure(const nlohmann::json& section) {
   if (coupling.role == CouplingRole::provider) info["capabilities"].push_back(protocol::capability::provides_interface);
   if (coupling.role == CouplingRole::driven) info["capabilities"].push_back(protocol::capability::accepts_interface);
   info["capabilities"].push_back(protocol::capability::snapshot);
+  // Its monitors are exactly the ones SPEC.md §6.3 defines for every server.
+  info[protocol::monitor_units_key] = protocol::shared_monitor_units();
   return info;
 }
 

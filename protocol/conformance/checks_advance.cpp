@@ -2,9 +2,12 @@
 // unchanged, interface outputs, then query, snapshot and the ordering rules
 // of the running state.
 #include <algorithm>
+#include <string>
+#include <vector>
 
 #include "check.hpp"
 #include "context.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 #include "expectations.hpp"
 #include "requests.hpp"
 
@@ -109,6 +112,17 @@ void query_reports_step_and_monitors(Context& context) {
   expect_monitors(reply.body["monitors"], "monitors");
 }
 
+// SPEC.md §6.3 (1.2): configure's info.monitor_units gives a unit to every
+// monitor the server sends, so that no results column is left to a guess.
+void declared_units_cover_monitors(Context& context) {
+  const protocol::Message reply = context.request(protocol::type::query);
+  expect_type(reply, protocol::type::monitors);
+  const std::vector<std::string> missing = protocol::undeclared_monitors(reply.body.value("monitors", nlohmann::json::object()), context.monitor_units);
+  std::string names;
+  for (const std::string& name : missing) names += (names.empty() ? "'" : ", '") + name + "'";
+  expect(missing.empty(), "configured.info.monitor_units gives no unit string for the monitor(s) " + names);
+}
+
 void expect_index_rows(const protocol::Array& indices, std::int64_t rows) {
   const auto values = indices.to_i64();
   expect(std::all_of(values.begin(), values.end(), [rows](std::int64_t v) { return v >= 0 && v < rows; }),
@@ -177,6 +191,8 @@ std::vector<Check> advance_checks() {
        one_step},
       {"advance.two_steps", "advance 2 steps from 1 gets advanced at step 3", M::stepped, M::none, true, two_steps},
       {"running.query", "query gets monitors at the current step", M::configured, M::none, true, query_reports_step_and_monitors},
+      {"running.monitor_units", "configure's info.monitor_units gives the unit of every monitor sent after a step", M::stepped, M::none,
+       true, declared_units_cover_monitors},
       {"running.snapshot", "snapshot gets snapshot_data with a kind and its arrays (snapshot capability), else UNSUPPORTED",
        M::configured, M::none, true, snapshot_matches_capability},
       {"running.get_interface_refused", "get_interface after advancing gets OUT_OF_ORDER", M::stepped, M::none, true,

@@ -6,6 +6,7 @@
 #include "check.hpp"
 #include "context.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 #include "expectations.hpp"
 #include "requests.hpp"
 
@@ -70,6 +71,9 @@ void configure_is_accepted_with_hash(Context& context) {
   expect(info.contains("dt_max") && (info["dt_max"].is_null() || positive_number(info["dt_max"])),
          "configured.info.dt_max must be a positive number or null, got " + info.value("dt_max", nlohmann::json()).dump());
   narrow_capabilities(context, info);
+  context.monitor_units = info.value(protocol::monitor_units_key, nlohmann::json());
+  expect(context.monitor_units.is_null() || context.monitor_units.is_object(),
+         "configured.info.monitor_units must be an object {monitor: unit}, got " + context.monitor_units.dump().substr(0, 200));
   context.dt = info["dt_suggested"].get<double>();
   if (info["dt_max"].is_number()) context.dt = std::min(context.dt, info["dt_max"].get<double>());
   context.step = 0;

@@ -61,6 +61,7 @@ class Context {
   bool snapshot = false;
   double dt = 1e-6;                      ///< s; dt_suggested from configured
   std::int64_t step = 0;                 ///< the server's step as the checks know it
+  nlohmann::json monitor_units;          ///< configured.info.monitor_units; null when the server declared none
   /// Rows of the interface arrays, once known: the mesh the server provided
   /// (get_interface) and the test mesh it accepted (set_interface).
   std::optional<std::int64_t> provided_nodes;

@@ -1,5 +1,7 @@
 #include "expectations.hpp"
 
+#include "dfc/protocol/monitor_units.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -63,9 +65,7 @@ const protocol::Array& expect_array(const protocol::Message& reply, std::string_
 void expect_monitors(const nlohmann::json& monitors, std::string_view where) {
   expect(monitors.is_object(), std::string(where) + ": 'monitors' must be an object, got " + monitors.dump().substr(0, 200));
   for (const auto& [name, value] : monitors.items()) {
-    const bool vector3 = value.is_array() && value.size() == 3 &&
-                         std::all_of(value.begin(), value.end(), [](const nlohmann::json& v) { return v.is_number(); });
-    expect(value.is_number() || vector3,
+    expect(protocol::monitor_width(value) > 0,
            std::string(where) + ": monitor '" + name + "' must be a number or [x, y, z], got " + value.dump().substr(0, 200));
   }
 }

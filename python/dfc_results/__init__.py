@@ -3,8 +3,9 @@
     from dfc_results import open_results, open_variants
 
     with open_results("results/demo_pile/results.h5") as run:
-        force = run.series("dem_pile_force_n")        # Series(name, values, unit)
+        force = run.series("dem_pile_force_n")        # Series(name, values, unit, unit_guessed)
         print(force.unit, force.values.max())
+        floor = run.series("dem_wall_floor_force_n")   # an [x, y, z] monitor: values of shape (rows, 3)
         for snap in run.snapshots("dem"):              # every DEM snapshot, in order
             print(snap.step, snap.time, snap.arrays["position"].shape)
 
@@ -16,7 +17,9 @@ Layout of the file (see docs/results.md):
 
     /                         attributes: format, created_utc, scenario (JSON text), versions (JSON),
                               summary (JSON, at the end of a run), failure (JSON, only when it failed)
-    /timeseries/<column>      1-D float64, one row per recorded exchange; attribute "unit";
+    /timeseries/<column>      float64, one row per recorded exchange: 1-D for a number, (rows, 3)
+                              for an [x, y, z] monitor; attribute "unit" (as the solver declared it),
+                              and "unit_source" where the unit was only guessed from the name;
                               the group's attribute "columns" lists the columns in recorded order (JSON)
     /snapshots/<role>/<nnnnnn>  one group per snapshot of a participant ("dem", "continuum", ...):
                               attributes step, time, kind; one dataset per array
@@ -47,12 +50,15 @@ class ResultsError(Exception):
 
 
 class Series(NamedTuple):
-    """One time-series column: its values (float64; NaN where the quantity does not
-    apply in a row) and its unit as the writer recorded it ("" when none was given)."""
+    """One time-series column: its values (float64, shape (rows,) or (rows, 3) for a
+    vector; NaN where the quantity does not apply in a row), its unit as the writer
+    recorded it ("" when none was given), and whether that unit is only a guess from
+    the column's name (a solver that declared no units)."""
 
     name: str
     values: np.ndarray
     unit: str
+    unit_guessed: bool = False
 
 
 class Snapshot(NamedTuple):
@@ -130,7 +136,7 @@ class Results:
         if group is None:
             return []
         declared = _json_attribute(group.attrs, "columns") or []
-        present = [name for name, item in group.items() if isinstance(item, h5py.Dataset) and item.ndim == 1]
+        present = [name for name, item in group.items() if isinstance(item, h5py.Dataset) and item.ndim in (1, 2)]
         ordered = [name for name in declared if name in present]
         return ordered + sorted(set(present) - set(ordered))
 
@@ -145,7 +151,7 @@ class Results:
             have = ", ".join(self.series_names) or "none"
             raise ResultsError(f"'{self.path}' has no time series '{name}' (have: {have})")
         unit = _text(dataset.attrs["unit"]) if "unit" in dataset.attrs else ""
-        return Series(name, np.asarray(dataset[...], dtype=float), unit)
+        return Series(name, np.asarray(dataset[...], dtype=float), unit, "unit_source" in dataset.attrs)
 
     def unit(self, name):
         return self.series(name).unit

@@ -10,6 +10,7 @@
 #include "dfc/fdm/hex_overlays.hpp"
 #include "dfc/fdm/mixed_discretization.hpp"
 #include "dfc/fdm/provider_interface.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 
 namespace dfc::reference {
 
@@ -99,7 +100,8 @@ nlohmann::json ElasticReferenceBackend::configure(const nlohmann::json& section)
           {"zones", solver.mesh().zone_count()},
           {"coupling_role", "provider"},
           {"interface_nodes", rows},
-          {"capabilities", identity().capabilities}};
+          {"capabilities", identity().capabilities},
+          {protocol::monitor_units_key, protocol::shared_monitor_units()}};
 }
 
 protocol::InterfaceMesh ElasticReferenceBackend::interface_mesh() {

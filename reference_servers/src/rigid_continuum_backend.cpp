@@ -1,6 +1,7 @@
 #include "dfc/reference/rigid_continuum_backend.hpp"
 
 #include "dfc/common/version.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 
 namespace dfc::reference {
 
@@ -17,6 +18,7 @@ nlohmann::json RigidContinuumBackend::configure(const nlohmann::json& section) {
   // side that provides the interface, whatever role the section names.
   info["dt_max"] = nullptr;
   info["capabilities"] = identity().capabilities;
+  info[protocol::monitor_units_key] = protocol::shared_monitor_units();
   force_received_ = {0.0, 0.0, 0.0};
   return info;
 }

@@ -64,6 +64,34 @@ TEST(ResultsWriterSeries, AppendWithWrongRowLengthThrows) {
   EXPECT_THROW(out.declare_series({"d"}, {}), std::logic_error);
 }
 
+TEST(ResultsWriterSeries, VectorColumnsAreRowsOfThreeWithTheirUnits) {
+  ScratchDir dir("vectors");
+  const std::size_t rows = 300;  // more than one write block
+  {
+    ResultsWriter out(dir / "run.h5", scenario, versions);
+    out.declare_series({{"time_s", "s"}, {"dem_wall_floor_force_n", "N", 3}, {"dem_axial_stress_pa", "Pa"}, {"dem_odd", "1", 1, true}});
+    for (std::size_t i = 0; i < rows; ++i) {
+      const double x = double(i);
+      out.append({x, x, -x, 2 * x, 1e3 * x, 0.5});
+    }
+    EXPECT_THROW(out.append({0.0, 1.0, 2.0, 3.0}), std::invalid_argument);  // a row must hold all three components
+    out.close();
+  }
+  const h5::File in = h5::File::open_read_only(dir / "run.h5");
+  const h5::Dataset force = in.root().open_dataset("/timeseries/dem_wall_floor_force_n");
+  EXPECT_EQ(force.shape(), (std::vector<std::int64_t>{std::int64_t(rows), 3}));
+  const std::vector<double> components = force.read_f64();
+  ASSERT_EQ(components.size(), 3 * rows);
+  EXPECT_EQ((std::vector<double>(components.begin() + 3 * 7, components.begin() + 3 * 8)), (std::vector<double>{7.0, -7.0, 14.0}));
+  EXPECT_EQ(in.root().open_dataset("/timeseries/time_s").shape(), (std::vector<std::int64_t>{std::int64_t(rows)}));
+  EXPECT_EQ(h5::read_f64(in, "/timeseries/dem_axial_stress_pa")[9], 9e3);
+  EXPECT_EQ(h5::read_string_attribute(in, "/timeseries/dem_wall_floor_force_n", "unit"), "N");
+  EXPECT_EQ(h5::read_string_attribute(in, "/timeseries/dem_axial_stress_pa", "unit"), "Pa");
+  // Only a guessed unit says where it came from.
+  EXPECT_FALSE(h5::has_attribute(force.id(), "unit_source"));
+  EXPECT_EQ(h5::read_string_attribute(in, "/timeseries/dem_odd", "unit_source"), "guessed from the name");
+}
+
 TEST(ResultsWriterSeries, RejectsBadColumnDeclarations) {
   ScratchDir dir("columns");
   ResultsWriter out(dir / "run.h5", scenario, versions);

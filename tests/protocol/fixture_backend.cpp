@@ -9,6 +9,7 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/protocol/monitor_units.hpp"
 
 namespace dfc::protocol::testing {
 
@@ -51,7 +52,9 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
   velocity_.assign(mesh_.coordinates.size(), 0.0);
   displacement_.assign(mesh_.coordinates.size(), 0.0);
   if (breakage_ == Breakage::huge_particle_count) monitors_ = {{"particle_count", 2e10}};
-  return {{"dt_suggested", 1e-3}, {"dt_max", 1e-2}};
+  nlohmann::json units = shared_monitor_units();
+  units["particle_count"] = unit::dimensionless;  // sent by the huge_particle_count breakage only
+  return {{"dt_suggested", 1e-3}, {"dt_max", 1e-2}, {monitor_units_key, units}};
 }
 
 AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {

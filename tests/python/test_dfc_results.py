@@ -25,7 +25,8 @@ STRING = h5py.string_dtype("utf-8")  # the writer's attributes are variable-leng
 
 def write_results(path, name="pile", scale=1.0, summary=True):
     """A results file as the coupler writes it: root attributes, /timeseries with
-    units and the declared column order, two snapshots of two roles."""
+    units (one of them guessed), a vector column and the declared column order,
+    two snapshots of two roles."""
     os.makedirs(os.path.dirname(path), exist_ok=True)
     columns = ["step", "time_s", "dem_pile_force_n", "dem_axial_stress_pa", "interface_force_on_dem_z"]
     with h5py.File(path, "w") as f:
@@ -45,6 +46,11 @@ def write_results(path, name="pile", scale=1.0, summary=True):
             dataset = series.create_dataset(column, data=values, maxshape=(None,), chunks=(1024,))
             if column in units:  # the last column has no unit attribute
                 dataset.attrs.create("unit", units[column], dtype=STRING)
+        series["step"].attrs.create("unit_source", "guessed from the name", dtype=STRING)
+        floor = series.create_dataset("dem_wall_floor_force_n", data=np.arange(12, dtype=float).reshape(4, 3) * scale,
+                                      maxshape=(None, 3), chunks=(1024, 3))
+        floor.attrs.create("unit", "N", dtype=STRING)
+        series.attrs.create("columns", json.dumps(columns + ["dem_wall_floor_force_n"]), dtype=STRING)
         snapshots = f.create_group("snapshots")
         for role, kind in (("dem", "particles"), ("continuum", "grid")):
             for index in range(2):
@@ -83,7 +89,8 @@ class ResultsFileTest(unittest.TestCase):
     def test_series_names_in_recorded_order(self):
         with dfc_results.open_results(self.path) as run:
             self.assertEqual(run.series_names,
-                             ["step", "time_s", "dem_pile_force_n", "dem_axial_stress_pa", "interface_force_on_dem_z"])
+                             ["step", "time_s", "dem_pile_force_n", "dem_axial_stress_pa", "interface_force_on_dem_z",
+                              "dem_wall_floor_force_n"])
             self.assertTrue(run.has_series("time_s"))
             self.assertFalse(run.has_series("nothing"))
 
@@ -104,6 +111,18 @@ class ResultsFileTest(unittest.TestCase):
         self.assertEqual(list(everything), names)
         self.assertEqual(everything["time_s"].unit, "s")
         self.assertEqual(run.path, self.path)
+
+    def test_vector_series_has_a_row_per_exchange(self):
+        with dfc_results.open_results(self.path) as run:
+            floor = run.series("dem_wall_floor_force_n")
+        self.assertEqual(floor.values.shape, (4, 3))
+        self.assertEqual(floor.unit, "N")
+        np.testing.assert_array_equal(floor.values[1], [3.0, 4.0, 5.0])
+
+    def test_guessed_units_are_marked(self):
+        with dfc_results.open_results(self.path) as run:
+            self.assertTrue(run.series("step").unit_guessed)
+            self.assertFalse(run.series("dem_pile_force_n").unit_guessed)
 
     def test_missing_series_names_those_present(self):
         with dfc_results.open_results(self.path) as run:

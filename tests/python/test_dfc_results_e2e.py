@@ -54,6 +54,30 @@ class PileRunTest(unittest.TestCase):
         for name in run.series_names:
             self.assertIsInstance(run.unit(name), str)
 
+    def test_every_column_has_its_declared_unit(self):
+        """Both servers declare their units (SPEC.md §6.3): no column is left to a
+        guess, and the name suffixes agree with what was declared."""
+        run = self.run_results
+        rows = len(run.series("time_s").values)
+        suffix_units = {"_pa": "Pa", "_n": "N", "_m": "m", "_nm": "N m", "_j": "J", "_w": "W", "_s": "s"}
+        for name in run.series_names:
+            series = run.series(name)
+            with self.subTest(column=name):
+                self.assertFalse(series.unit_guessed)
+                self.assertEqual(series.values.shape[0], rows)
+                for suffix, unit in suffix_units.items():
+                    if name.endswith(suffix):
+                        self.assertEqual(series.unit, unit)
+
+    def test_wall_force_is_a_vector_per_exchange(self):
+        run = self.run_results
+        rows = len(run.series("time_s").values)
+        for name, unit in (("dem_wall_floor_force_n", "N"), ("dem_wall_floor_moment_nm", "N m")):
+            series = run.series(name)
+            self.assertEqual(series.values.shape, (rows, 3))
+            self.assertEqual(series.unit, unit)
+            self.assertTrue(np.all(np.isfinite(series.values)))
+
     def test_snapshots_of_both_sides(self):
         run = self.run_results
         self.assertIn("dem", run.roles)

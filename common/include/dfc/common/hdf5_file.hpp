@@ -72,7 +72,9 @@ class Dataset {
   /// "f64", "f32", "i64", "i32", "u8" for those native types, else "other".
   [[nodiscard]] std::string element_type_name() const;
 
-  /// Grows a 1-D extendable dataset by values.size() and writes them at the end.
+  /// Grows an extendable dataset by whole rows and writes `values` (row after
+  /// row) at the end: values.size() rows of a 1-D dataset, values.size() / width
+  /// rows of an [N, width] one (a size that is not a whole number of rows throws).
   void append_f64(std::span<const double> values);
 
   /// All values converted to double / int64 (HDF5 converts numeric types).
@@ -101,9 +103,10 @@ class Group {
   /// Names of the direct members, in ascending name order.
   [[nodiscard]] std::vector<std::string> members() const;
 
-  /// A 1-D, initially empty, unlimited f64 dataset, chunked by `chunk_rows`
-  /// (chunking is what lets it grow; the chunk size trades memory for I/O calls).
-  [[nodiscard]] Dataset create_extendable_f64(const std::string& name, hsize_t chunk_rows) const;
+  /// An initially empty f64 dataset of unlimited rows, chunked by `chunk_rows`
+  /// (chunking is what lets it grow; the chunk size trades memory for I/O calls):
+  /// 1-D for `width` 1, else [N, width] (e.g. 3 for a vector per row).
+  [[nodiscard]] Dataset create_extendable_f64(const std::string& name, hsize_t chunk_rows, hsize_t width = 1) const;
   /// A fixed-size dataset of `native_type` with `shape` (empty: scalar) holding `bytes`,
   /// whose size must be shape product × type size.
   Dataset write_dataset(const std::string& name, hid_t native_type, std::span<const std::int64_t> shape,

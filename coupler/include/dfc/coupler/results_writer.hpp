@@ -4,8 +4,11 @@
 //
 // Layout ("format" = "dfc-results-1"):
 //   /                      attributes scenario, versions (JSON text), created_utc, format, and any set_attribute()
-//   /timeseries/<column>   1-D f64, extendable and chunked; attribute "unit"; the group's
-//                          attribute "columns" lists the column order as a JSON array
+//   /timeseries/<column>   f64, extendable and chunked: 1-D for a number per row, [N, 3] for
+//                          an [x, y, z] per row; attribute "unit", and "unit_source"
+//                          ("guessed from the name") where the unit is not the solver's
+//                          declaration; the group's attribute "columns" lists the column
+//                          order as a JSON array
 //   /snapshots/<role>/<NNNNNN>/<array>
 //                          one group per snapshot (attributes step, time, kind), one dataset
 //                          per array with the array's dtype and shape
@@ -37,6 +40,14 @@
 
 namespace dfc::coupler {
 
+/// One time-series column: `width` numbers per row (1: a scalar; 3: a vector).
+struct SeriesColumn {
+  std::string name;
+  std::string unit;           ///< attribute "unit"; empty: none stored
+  std::size_t width = 1;
+  bool unit_guessed = false;  ///< the unit is a guess, not a declaration: marked so in the file
+};
+
 class ResultsWriter {
  public:
   /// Value of the root attribute "format".
@@ -55,7 +66,10 @@ class ResultsWriter {
   /// free of '/'; `units` may give a unit for any of them (stored as attribute "unit")
   /// and must not name unknown columns. Throws std::invalid_argument / std::logic_error.
   void declare_series(const std::vector<std::string>& columns, const std::map<std::string, std::string>& units);
-  /// Appends one row; its size must equal the column count (std::invalid_argument otherwise).
+  /// The same for columns of any width; a unit is stored where it is not empty.
+  void declare_series(const std::vector<SeriesColumn>& columns);
+  /// Appends one row: the values of every column in declared order, `width` of
+  /// each; its size must equal the sum of the widths (std::invalid_argument otherwise).
   void append(const std::vector<double>& row);
   /// Number of rows appended so far (written or still buffered).
   [[nodiscard]] std::int64_t row_count() const noexcept;

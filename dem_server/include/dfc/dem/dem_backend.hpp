@@ -56,6 +56,8 @@ class DemBackend final : public protocol::SolverBackend {
   Simulation& sim();
   /// Unit vector of the pile's motion (its velocity direction; -z if it does not move).
   [[nodiscard]] Vec3 pile_direction() const;
+  /// configure's info.monitor_units (SPEC.md §6.3): the unit of every monitor monitors() may send.
+  [[nodiscard]] nlohmann::json monitor_units() const;
 
   DemConfig config_;
   DemModel model_;
