@@ -49,11 +49,10 @@ const GenerationRun& small_run() {
 // one REV cell high and the top and bottom one are left out (the free surface,
 // where the forces scaled to nearly zero meet the few spheres above, and the
 // floor's boundary layer).
-//  - sigma_h within 5 % (the criterion asked for); sigma_v within 7 %: it
-//    measures 5-6 % low, because this small core (eight diameters in radius)
-//    hangs about an eighth of its weight on the coupling wall by friction while
-//    it settles onto its floor (docs/dem_generation.md §5; the paper-size model
-//    of §6 is within 5 %, rms 2 %).
+//  - within 5 %, the criterion asked for. Measured: sigma_h +1 to +3 %,
+//    sigma_v -4 %: this small core (eight diameters in radius) hangs about an
+//    eighth of its weight on the coupling wall by friction while it settles
+//    onto its floor (docs/dem_generation.md §5).
 TEST(Generation, StressFollowsTheSelfWeightFieldAtNg) {
   const GenerationRun& run = small_run();
   ASSERT_TRUE(run.summary.value("equilibrium_reached", false)) << run.summary.dump();
@@ -68,7 +67,7 @@ TEST(Generation, StressFollowsTheSelfWeightFieldAtNg) {
     const double theory = gamma * depth[s];
     std::cout << "depth " << 1e3 * depth[s] << " mm: sigma_v " << sigma_v[s] << " Pa (theory " << theory << "), sigma_h " << sigma_h[s]
               << " Pa (theory " << k0 * theory << ")\n";
-    EXPECT_NEAR(sigma_v[s], theory, 0.07 * theory) << "slice " << s;
+    EXPECT_NEAR(sigma_v[s], theory, 0.05 * theory) << "slice " << s;
     EXPECT_NEAR(sigma_h[s], k0 * theory, 0.05 * k0 * theory) << "slice " << s;
   }
 }
@@ -107,11 +106,29 @@ TEST(Generation, NoSphereOverlapsTheFloorByMoreThanOnePercentOfItsRadius) {
   EXPECT_LT(worst, 0.01);
 }
 
+TEST(Generation, TheFloorAndTheCouplingWallCarryTheBodysWeight) {
+  // At equilibrium the DEM body's weight rests on its floor (the particles'
+  // force ON the floor wall, downward) and on the coupling wall (the
+  // interface's force ON the particles, upward by friction): within 0.5 %,
+  // the criterion. The rest is the body's rate of change of momentum,
+  // which the stop at an unbalanced-force ratio of 0.002 bounds (measured
+  // -0.37 %; at a ratio of 0.01 it was -2 %).
+  const GenerationRun& run = small_run();
+  const h5::File file = h5::File::open_read_only(run.results);
+  const auto floor = h5::read_f64(file, "/timeseries/dem_wall_floor_force_n");  // [rows, 3]
+  const double weight = series(run.results, "dem_total_weight_n").back();
+  const double on_floor = -floor[floor.size() - 1];
+  const double on_wall = series(run.results, "interface_force_on_dem_z").back();
+  std::cout << "weight " << weight << " N = floor " << on_floor << " N + coupling wall " << on_wall << " N ("
+            << 100.0 * ((on_floor + on_wall) / weight - 1.0) << " %)\n";
+  EXPECT_NEAR(on_floor + on_wall, weight, 0.005 * weight);
+}
+
 TEST(Generation, DemAndFdmAgreeAtEachDepth) {
   // The FDM starts geostatic (sigma_v = rho g z, sigma_h = K0 sigma_v) with the
   // DEM's bulk density; after the equilibration both sides must still carry
   // the same stress at the same depth. Mean over the zones whose centroid lies
-  // in the DEM's slice; 7 % as the DEM's sigma_v above.
+  // in the DEM's slice; 5 % as above.
   const GenerationRun& run = small_run();
   const h5::File file = h5::File::open_read_only(run.results);
   const std::string dem = last_snapshot(file, "dem"), fdm = last_snapshot(file, "continuum");
@@ -137,7 +154,7 @@ TEST(Generation, DemAndFdmAgreeAtEachDepth) {
     ASSERT_GT(count, 0);
     v /= count;
     h /= count;
-    EXPECT_NEAR(sigma_v[s], v, 0.07 * v) << "slice " << s;
+    EXPECT_NEAR(sigma_v[s], v, 0.05 * v) << "slice " << s;
     EXPECT_NEAR(sigma_h[s], h, 0.05 * h) << "slice " << s;
   }
 }
