@@ -1,6 +1,7 @@
 #include "dfc/dem/dem_backend.hpp"
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
@@ -75,6 +76,7 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   config_ = std::move(config);
   model_ = std::move(model);
   interface_wall_.reset();
+  generation_removed_by_interface_ = 0;
   averages_ = nlohmann::json::object();
   if (model_.pile_wall) pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
   ucs_axis_.reset();
@@ -204,7 +206,11 @@ void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
     const double fraction = std::max(pcrm->protrusion_fraction, wall_contact_overlap_fraction);
     generation_removed_by_interface_ +=
         s.remove_particles_before_start([&](std::size_t i) { return cut_by_wall(p.position[i], p.radius[i], wall, fraction); });
-    if (pcrm->seat) model_.generation->seated += seat_on_wall(s, wall, model_.generation->profile, face_areas(pcrm->region)).seated;
+    std::size_t seated = 0;
+    if (pcrm->seat) seated = seat_on_wall(s, wall, model_.generation->profile, face_areas(pcrm->region)).seated;
+    model_.generation->seated += seated;
+    std::cerr << "dem_server: pcrm coupling wall: " << generation_removed_by_interface_ << " spheres it cut removed, " << seated
+              << " seated on it; " << s.particles().size() << " spheres in the model" << std::endl;
   }
   if (interface_wall_) s.replace_wall(*interface_wall_, std::move(wall));
   else interface_wall_ = s.add_wall(std::move(wall));
