@@ -29,9 +29,13 @@ struct GenerationRun {
   nlohmann::json summary;
 };
 
+/// The small variant, run once per test process: CTest runs every test in a
+/// process of its own and in parallel, so each gets a folder named after it
+/// (a shared one was deleted under a neighbour's feet).
 const GenerationRun& small_run() {
   static const GenerationRun run = [] {
-    const auto dir = fresh_directory("centrifuge_generation_small");
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    const auto dir = fresh_directory("centrifuge_generation_small_" + test);
     const CommandResult result = run_command(
         {coupler(), "run", (e2e_dir() / "scenarios" / "centrifuge_generation_small.json").string(), "--out", dir.string(), "--no-progress"},
         std::chrono::seconds(300));
