@@ -6,7 +6,6 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
-#include "dfc/dem/boundary_seating.hpp"
 #include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
@@ -202,13 +201,9 @@ void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
   // cavity), so spheres they cut are removed now, before the first step, by
   // the same rule as the rigid walls (docs/dem_generation.md §2).
   if (const auto& pcrm = config_.particles.pcrm; pcrm && s.step_count() == 0) {
-    const ParticleStore& p = s.particles();
-    const double fraction = std::max(pcrm->protrusion_fraction, wall_contact_overlap_fraction);
-    generation_removed_by_interface_ +=
-        s.remove_particles_before_start([&](std::size_t i) { return cut_by_wall(p.position[i], p.radius[i], wall, fraction); });
-    std::size_t seated = 0;
-    if (pcrm->seat) seated = seat_on_wall(s, wall, model_.generation->profile, face_areas(pcrm->region)).seated;
-    model_.generation->seated += seated;
+    const std::size_t seated_before = model_.generation->seated;
+    generation_removed_by_interface_ += fit_to_wall(s, wall, *pcrm, *model_.generation);
+    const std::size_t seated = model_.generation->seated - seated_before;
     std::cerr << "dem_server: pcrm coupling wall: " << generation_removed_by_interface_ << " spheres it cut removed, " << seated
               << " seated on it; " << s.particles().size() << " spheres in the model" << std::endl;
   }

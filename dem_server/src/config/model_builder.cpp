@@ -4,7 +4,6 @@
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
-#include "dfc/dem/boundary_seating.hpp"
 #include "dfc/dem/timestep.hpp"
 #include "dfc/dem/triangle_geometry.hpp"
 
@@ -97,15 +96,9 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   for (std::size_t k = 0; k < body.spheres.size(); ++k) sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density);
   sim.seed_pair_history(body.archive(), true);
   const ParticleStore& p = sim.particles();
-  const double fraction = std::max(config.protrusion_fraction, wall_contact_overlap_fraction);
-  model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) {
-    const GeneratedSphere s{p.position[i], p.radius[i]};
-    bool cut = c.pile && inside_pile(s, c.pile->geometry);
-    for (const auto& wall : sim.walls()) cut = cut || cut_by_wall(s.centre, s.radius, wall, fraction);
-    return cut;
-  });
-  if (config.seat)
-    for (const auto& wall : sim.walls()) model.generation->seated += seat_on_wall(sim, wall, model.generation->profile, face_areas(config.region)).seated;
+  if (c.pile)
+    model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) { return inside_pile({p.position[i], p.radius[i]}, c.pile->geometry); });
+  for (const auto& wall : sim.walls()) model.removed_particles += fit_to_wall(sim, wall, config, *model.generation);
   ReplicatedBody& held = model.generation->body;  // the simulation holds the body now
   held.id = {};
   held.spheres = {};

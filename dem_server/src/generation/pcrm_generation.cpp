@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/boundary_seating.hpp"
 
 namespace dfc::dem {
 
@@ -64,6 +65,14 @@ GeneratedBody generate_pcrm(const PcrmConfig& config, const SimulationSettings& 
   out.rev.rows.clear();
   out.rev.rows.shrink_to_fit();
   return out;
+}
+
+std::size_t fit_to_wall(Simulation& sim, const Wall& wall, const PcrmConfig& config, GeneratedBody& body) {
+  const ParticleStore& p = sim.particles();
+  const double fraction = std::max(config.protrusion_fraction, wall_contact_overlap_fraction);
+  const std::size_t removed = sim.remove_particles_before_start([&](std::size_t i) { return cut_by_wall(p.position[i], p.radius[i], wall, fraction); });
+  if (config.seat) body.seated += seat_on_wall(sim, wall, body.profile, face_areas(config.region)).seated;
+  return removed;
 }
 
 }  // namespace dfc::dem

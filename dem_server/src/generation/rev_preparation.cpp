@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dfc/common/errors.hpp"
 #include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/sample_preparation.hpp"
 #include "dfc/dem/timestep.hpp"
@@ -46,10 +47,29 @@ PreparedRev prepare_rev(const RevSpec& spec, SimulationSettings settings, const 
   settings.gravity = {};
   settings.install_bonds_at_start = false;
   Simulation sim(std::move(settings));
-  ExpansionPacking packing = place_for_radius_expansion(spec.particles, spec.cell);
+  // Placement and the cell's width are checked here, where the keys are known:
+  // every edge must hold 2 (2 r_max + reach) with the final radii (the
+  // simulation's own check would only fire during the expansion, keyless).
+  const double r_max = spec.particles.radius_max;
+  const double reach = std::max(sim.settings().skin > 0.0 ? sim.settings().skin : 0.2 * r_max, sim.settings().particle_law.bond_gap());
+  const Vec3 edge = spec.cell.length();
+  if (std::min({edge.x, edge.y, edge.z}) < 2.0 * (2.0 * r_max + reach))
+    throw ConfigError(key + ".cell_m", "the REV cell must be at least 2 (2 r_max + skin or bond gap) = " + std::to_string(2.0 * (2.0 * r_max + reach)) +
+                                           " m long on every axis (after upscaling by S); it is " + std::to_string(std::min({edge.x, edge.y, edge.z})) +
+                                           " m: widen cell_m");
+  ExpansionPacking packing;
+  try {
+    packing = place_for_radius_expansion(spec.particles, spec.cell);
+  } catch (const UserError& e) {
+    throw ConfigError(key + ".multiplier", e.what());
+  }
   for (std::size_t k = 0; k < packing.spheres.size(); ++k)
     sim.add_sphere(std::int64_t(k), packing.spheres[k].centre, packing.spheres[k].radius, spec.density);
-  sim.set_periodic_cell(spec.cell);
+  try {
+    sim.set_periodic_cell(spec.cell);
+  } catch (const UserError& e) {
+    throw ConfigError(key + ".cell_m", e.what());
+  }
 
   PreparedRev rev;
   rev.dt = spec.fraction_of_critical * grown_critical_step(sim, packing.final_radius);

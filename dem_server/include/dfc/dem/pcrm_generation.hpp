@@ -9,6 +9,7 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/dem/pcrm_replication.hpp"
+#include "dfc/dem/wall.hpp"
 #include "dfc/dem/rev_preparation.hpp"
 #include "dfc/dem/stress_profile.hpp"
 #include "dfc/dem/stress_scaling.hpp"
@@ -48,5 +49,13 @@ struct GeneratedBody {
 /// naming "particles.<key>" for what the inputs cannot give (a law whose
 /// bonded state cannot be scaled, no gravity and no surcharge).
 [[nodiscard]] GeneratedBody generate_pcrm(const PcrmConfig& config, const SimulationSettings& settings, const Vec3& gravity);
+
+/// Fits the generated body in `simulation` to one of its walls before the
+/// first step: removes the spheres the wall cuts by more than the protrusion
+/// fraction (at least wall_contact_overlap_fraction) with their pairs, then
+/// seats the outermost ones on it (boundary_seating.hpp) unless seating is off.
+/// Used for the rigid walls when the model is built and for the coupling wall
+/// when it arrives. Adds to body.seated; returns the spheres removed.
+std::size_t fit_to_wall(Simulation& simulation, const Wall& wall, const PcrmConfig& config, GeneratedBody& body);
 
 }  // namespace dfc::dem
