@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/cell_stress.hpp"
+#include "dfc/dem/pcrm_replication.hpp"
 #include "dfc/dem/portable_random.hpp"
+#include "dfc/dem/region_config.hpp"
 
 namespace dfc::dem {
 
@@ -72,11 +75,16 @@ double stage_radius(double final_radius, double multiplier, int stage, int stage
   return final_radius * std::pow(multiplier, double(stage) / double(stages) - 1.0);
 }
 
-ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, const PeriodicCell& cell) {
+namespace {
+
+/// Steps 1-2 in `cell` for a container of `volume`; `inside` (if set) rejects
+/// a candidate position that the container does not hold whole.
+ExpansionPacking place(const RadiusExpansionSpec& spec, const PeriodicCell& cell, double container_volume,
+                       const std::function<bool(const GeneratedSphere&)>& inside) {
   PortableRandom random(spec.seed);
   ExpansionPacking out;
   // 1. Radii with the exact solid volume (1 - n) V.
-  const double solid = (1.0 - spec.porosity) * cell.volume();
+  const double solid = (1.0 - spec.porosity) * container_volume;
   double volume = 0.0;
   while (volume < solid) {
     out.final_radius.push_back(random.uniform(spec.radius_min, spec.radius_max));
@@ -106,6 +114,7 @@ ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, con
       x.x = coordinate(0, cell.lo.x, cell.hi.x);
       x.y = coordinate(1, cell.lo.y, cell.hi.y);
       x.z = coordinate(2, cell.lo.z, cell.hi.z);
+      if (inside && !inside({x, r})) continue;
       bool free = true;
       grid.for_each_near(x, [&](std::uint32_t other) {
         const double reach = r + out.spheres[other].radius;
@@ -121,6 +130,19 @@ ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, con
                       " spheres without overlap at their reduced radii; raise the multiplier or the target porosity");
   }
   return out;
+}
+
+}  // namespace
+
+ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, const PeriodicCell& cell) {
+  return place(spec, cell, cell.volume(), nullptr);
+}
+
+ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, const BedRegion& region) {
+  const auto [lo, hi] = region_bounds(region);
+  const PeriodicCell bounds{.lo = lo, .hi = hi, .periodic = {false, false, false}, .strain_rate = {}};
+  const double volume = region.shape == BedRegion::Shape::box ? bounds.volume() : std::numbers::pi * region.radius * region.radius * (hi.z - lo.z);
+  return place(spec, bounds, volume, [&](const GeneratedSphere& s) { return clearance(s, region) >= 0.0; });
 }
 
 ExpansionReport expand_radii(Simulation& sim, std::span<const double> final_radius, const RadiusExpansionSpec& spec, double fraction_of_critical,

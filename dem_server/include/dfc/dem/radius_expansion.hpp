@@ -48,6 +48,11 @@ struct ExpansionPacking {
 /// Throws UserError if a sphere cannot be placed (too dense a start).
 [[nodiscard]] ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, const PeriodicCell& cell);
 
+/// Steps 1–2 in a region closed by walls (a box, or a vertical cylinder:
+/// conventional_generation.hpp): the solid volume is (1 - n) times the
+/// region's, every sphere lies whole inside it (placement rejects the others).
+[[nodiscard]] ExpansionPacking place_for_radius_expansion(const RadiusExpansionSpec& spec, const BedRegion& region);
+
 /// m, radius after `stage` of `stages` (stage 0: final / multiplier, stage = stages: final).
 [[nodiscard]] double stage_radius(double final_radius, double multiplier, int stage, int stages) noexcept;
 
