@@ -58,6 +58,7 @@ struct Options {
   double ratio = 0.002;
   std::int64_t max_steps = 2000000;
   int threads = 1;
+  double porosity = 0.0;  ///< conventional target; 0: the PCRM body's
   bool require_equilibrium = false;
 };
 
@@ -89,6 +90,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--ratio") o.ratio = std::stod(v);
     else if (a == "--max-steps") o.max_steps = std::stoll(v);
     else if (a == "--threads") o.threads = std::stoi(v);
+    else if (a == "--porosity") o.porosity = std::stod(v);
     else throw std::runtime_error("unknown option " + a);
   }
   if (o.scenario.empty()) throw std::runtime_error("--scenario FILE is required");
@@ -258,7 +260,7 @@ int main(int argc, char** argv) try {
   std::cerr << "generation_compare: conventional" << std::endl;
   ConventionalSpec spec;
   spec.particles = pcrm.rev.particles;
-  spec.particles.porosity = generated.rev.porosity;
+  spec.particles.porosity = o.porosity > 0.0 ? o.porosity : generated.rev.porosity;
   spec.region = pcrm.region;
   spec.region.radius = pcrm.region.radius * std::sqrt(o.sides * std::sin(2.0 * std::numbers::pi / o.sides) / (2.0 * std::numbers::pi));
   spec.density = config.particles.density;
