@@ -6,8 +6,8 @@
 #
 #   bench/generation.sh [BUILD_DIR]      (default ./build; builds nothing)
 #
-# The conventional route it is meant to be compared with (radius expansion of
-# the whole domain and settling under N g) is not built yet; see the doc.
+# The comparison with conventional generation (radius expansion of the whole
+# domain and settling under N g) is bench/generation_compare.sh.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${1:-$ROOT/build}
