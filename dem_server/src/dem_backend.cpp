@@ -115,6 +115,14 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
                           {"scaled_bonds", gen->scaling.scaled_bonds},
                           {"lambda_min", gen->scaling.lambda_min},
                           {"lambda_max", gen->scaling.lambda_max}};
+    if (const auto& pcrm = config_.particles.pcrm; pcrm && !pcrm->zones.empty()) {
+      nlohmann::json zones = nlohmann::json::array();
+      for (std::size_t k = 0; k < pcrm->zones.size(); ++k)
+        zones.push_back({{"material", k}, {"scale_factor", pcrm->zones[k].scale_factor}, {"particles", gen->zone_spheres[k]}});
+      info["generation"]["zones"] = zones;
+      info["generation"]["seam_removed"] = gen->seam_removed;
+      info["generation"]["seam_seated"] = gen->seam_seated;
+    }
   }
   if (const auto& prep = model_.preparation) {
     nlohmann::json p = {{"consolidated", prep->consolidated},
@@ -401,6 +409,10 @@ std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
   stress.reserve(std::size_t(6 * n));
   for (const Stress6& v : particle_stress(s)) stress.insert(stress.end(), v.begin(), v.end());
   arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {n, 6}, stress));
+  if (s.materials().count() > 1) {  // graded bodies only: the zone (material) of each particle
+    const std::vector<std::int64_t> material(p.material.begin(), p.material.end());
+    arrays.push_back(protocol::Array::from_i64("particle_material", {n}, material));
+  }
   if (s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
   if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, arrays);
   if (!s.walls().empty()) {

@@ -376,7 +376,13 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
   DemConfig c;
   c.scale_factor = read_scale_factor(cfg);
   c.particles = read_particles(cfg.child("particles"), c.scale_factor);
-  c.contact = read_upscaled_law(cfg.child("contact"), c.scale_factor);
+  const ContactLawSetting contact = read_contact_law(cfg.child("contact"));
+  if (c.particles.pcrm && !c.particles.pcrm->zones.empty()) {  // graded: the first zone's S is the section's
+    const auto& zones = c.particles.pcrm->zones;
+    c.scale_factor = zones.front().scale_factor;
+    for (std::size_t k = 1; k < zones.size(); ++k) c.material_laws.push_back(upscale(contact, zones[k].scale_factor));
+  }
+  c.contact = upscale(contact, c.scale_factor);
   auto wall_contact = cfg.optional_child("wall_contact");
   c.wall_contact = wall_contact ? read_upscaled_law(std::move(*wall_contact), c.scale_factor) : c.contact;
   if (auto damping = cfg.optional_child("damping")) {

@@ -27,6 +27,7 @@ double critical_step(const ParticleStore& particles, const DemConfig& c, const s
   double r_max = 0.0;
   for (const double r : particles.radius) r_max = std::max(r_max, r);
   std::vector<StiffnessBound> laws{c.contact.stiffness_bound(r_max), c.wall_contact.stiffness_bound(r_max)};
+  for (const auto& m : c.material_laws) laws.push_back(m.stiffness_bound(r_max));
   for (const auto& w : walls) laws.push_back(w.law.stiffness_bound(r_max));
   return critical_timestep(particles, laws);
 }
@@ -93,8 +94,10 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   config.rev.fraction_of_critical = c.timestep.fraction_of_critical;
   model.generation = generate_pcrm(config, sim.settings(), c.gravity);
   const ReplicatedBody& body = model.generation->body;
-  for (std::size_t k = 0; k < body.spheres.size(); ++k) sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density);
+  for (std::size_t k = 0; k < body.spheres.size(); ++k)
+    sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density, body.material[k]);
   sim.seed_pair_history(body.archive(), true);
+  if (!c.material_laws.empty()) sim.bond_across_materials_now();  // the seams between zones (pcrm_zones.hpp)
   const ParticleStore& p = sim.particles();
   if (c.pile)
     model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) { return inside_pile({p.position[i], p.radius[i]}, c.pile->geometry); });
@@ -102,6 +105,7 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   ReplicatedBody& held = model.generation->body;  // the simulation holds the body now
   held.id = {};
   held.spheres = {};
+  held.material = {};
   held.pairs = {};
   held.rows = {};
 }
@@ -127,7 +131,8 @@ DemModel build_model(const DemConfig& c) {
                                                                      .local_damping = c.local_damping,
                                                                      .skin = c.skin,
                                                                      .threads = c.threads,
-                                                                     .install_bonds_at_start = !prepared});
+                                                                     .install_bonds_at_start = !prepared,
+                                                                     .material_laws = c.material_laws});
   Simulation& sim = *model.simulation;
 
   // 1. Rigid walls and the pile.

@@ -75,7 +75,10 @@ struct TimestepConfig {
 struct DemConfig {
   double scale_factor = 1.0;       ///< particle upscaling S (radii and law parameters already scaled)
   ParticleConfig particles;
-  ContactLawSetting contact;       ///< particle–particle
+  ContactLawSetting contact;       ///< particle–particle (material 0: the first zone of a graded body)
+  /// Materials 1, 2, ... (particle_materials.hpp): "contact" upscaled by the
+  /// S of pcrm zones 1, 2, ...; empty without zones.
+  std::vector<ContactLawSetting> material_laws;
   ContactLawSetting wall_contact;  ///< particle–wall default, and the coupling wall
   double local_damping = 0.7;
   TimestepConfig timestep;
