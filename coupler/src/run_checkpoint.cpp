@@ -76,7 +76,8 @@ std::string differing_keys(const nlohmann::json& before, const nlohmann::json& n
   int listed = 0;
   for (const auto& change : nlohmann::json::diff(before, now)) {
     if (++listed > 5) return keys + ", ...";
-    keys += (keys.empty() ? "" : ", ") + change.value("path", std::string("?"));
+    const auto path = change.find("path");
+    keys += (keys.empty() ? "" : ", ") + (path != change.end() && path->is_string() ? path->get_ref<const std::string&>() : std::string("?"));
   }
   return keys;
 }

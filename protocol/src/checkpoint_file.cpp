@@ -1,7 +1,6 @@
 #include "dfc/protocol/checkpoint_file.hpp"
 
 #include <fstream>
-#include <iterator>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
@@ -49,9 +48,10 @@ void write_checkpoint_file(const std::filesystem::path& path, const CheckpointHe
 CheckpointFile read_checkpoint_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) refuse(path, "does not exist or is not a file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  std::string bytes(ec ? 0 : std::size_t(size), '\0');
   std::ifstream file(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (!file.eof() && file.fail()) refuse(path, "cannot be read");
+  if (ec || !file.read(bytes.data(), std::streamsize(bytes.size()))) refuse(path, "cannot be read");
   if (bytes.compare(0, kMagic.size(), kMagic) != 0) refuse(path, "is not a dfc checkpoint (it does not start with " + std::string(kMagic) + ")");
   CheckpointFile result;
   try {

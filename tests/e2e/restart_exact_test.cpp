@@ -24,7 +24,7 @@ namespace dfc::testing {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr std::int64_t kCheckpointAt = 60;  // of 120 exchanges: one checkpoint only (they come every 60, the last exchange writes none)
+constexpr std::int64_t kCheckpointAt = 100;  // of 200 exchanges: one checkpoint only (the last exchange writes none)
 
 hid_t native(const std::string& dtype) {
   if (dtype == "f64") return H5T_NATIVE_DOUBLE;
@@ -74,7 +74,7 @@ TEST(ExactRestart, KilledAfterCheckpointAndResumedGivesTheSameBits) {
                                      std::chrono::minutes(5));
   ASSERT_EQ(reference.exit_status, 0) << reference.output;
 
-  // 2. The same run with a checkpoint at exchange 60, killed (SIGKILL, all processes) once it is written.
+  // 2. The same run with a checkpoint at exchange 100, killed (SIGKILL, all processes) once it is written.
   auto scenario = nlohmann::json::parse(read_text(scenario_file));
   scenario["run"]["checkpoint_every"] = kCheckpointAt;
   const fs::path checkpointed_file = dir / "checkpointed.json";
@@ -90,7 +90,7 @@ TEST(ExactRestart, KilledAfterCheckpointAndResumedGivesTheSameBits) {
   for (const pid_t server : servers) ::kill(server, SIGKILL);
   ::kill(coupler_pid, SIGKILL);
   const int killed_status = wait_command(coupler_pid, std::chrono::seconds(10));
-  // Killed mid-run as intended, unless this machine ran the last 60 exchanges faster than the poll: the resume is tested either way.
+  // Killed mid-run as intended, unless this machine ran the last 100 exchanges faster than the poll: the resume is tested either way.
   if (killed_status != 128 + SIGKILL) std::cerr << "note: the run ended (status " << killed_status << ") before it was killed\n";
 
   // 3. Resuming with another scenario is refused, naming the key that changed.
@@ -113,7 +113,7 @@ TEST(ExactRestart, KilledAfterCheckpointAndResumedGivesTheSameBits) {
   const auto file = h5::File::open_read_only(dir / "reference/results.h5");
   const auto broken = h5::read_f64(file, "/timeseries/dem_bonds_broken_tension");
   const auto broken_shear = h5::read_f64(file, "/timeseries/dem_bonds_broken_shear");
-  ASSERT_EQ(broken.size(), 120u);
+  ASSERT_EQ(broken.size(), 200u);
   EXPECT_GT(broken.back() + broken_shear.back(), broken[kCheckpointAt - 1] + broken_shear[kCheckpointAt - 1])
       << "no bond broke after the checkpoint: the scenario no longer tests the bond history";
 }
