@@ -19,7 +19,7 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 EXCHANGES=$("$PYTHON" -c 'import json,sys; print(json.load(open(sys.argv[1]))["run"]["exchanges"])' "$SCENARIO")
 
-"$BUILD/bin/coupler" run "$SCENARIO" --out "$OUT/reference" --no-progress > "$OUT/reference.log" 2>&1
+"$BUILD/bin/coupler" run "$SCENARIO" --out "$OUT/uninterrupted" --no-progress > "$OUT/uninterrupted.log" 2>&1
 
 compare() {  # prints "identical" or the first differing dataset
   "$PYTHON" - "$1" "$2" <<'PY'
@@ -60,7 +60,7 @@ for r in $(seq 1 "$REPEATS"); do
   wait "$pid" 2>/dev/null || true
   "$BUILD/bin/coupler" run --resume "$run" --no-progress > "$OUT/resume$r.log" 2>&1 || { echo "resume $r failed:"; cat "$OUT/resume$r.log"; exit 1; }
   resumed_at=$(grep -o 'after exchange [0-9]*' "$OUT/resume$r.log" | grep -o '[0-9]*$' || echo "?")
-  result=$(compare "$OUT/reference/results.h5" "$run/results.h5") || failures=$((failures + 1))
+  result=$(compare "$OUT/uninterrupted/results.h5" "$run/results.h5") || failures=$((failures + 1))
   printf '%-6s %-8s %-10s %-12s %s\n' "$r" "$k" "$killed" "$resumed_at" "$result"
 done
 size=$(du -cb "$OUT/run1/checkpoint/"*.checkpoint | tail -1 | cut -f1)

@@ -70,9 +70,9 @@ TEST(ExactRestart, KilledAfterCheckpointAndResumedGivesTheSameBits) {
   const fs::path scenario_file = e2e_dir() / "scenarios/pile_bonded_restart.json";
 
   // 1. The uninterrupted run, without checkpoints: writing them must not change a bit either.
-  const auto reference = run_command({coupler(), "run", scenario_file.string(), "--out", (dir / "reference").string(), "--no-progress"},
+  const auto uninterrupted = run_command({coupler(), "run", scenario_file.string(), "--out", (dir / "uninterrupted").string(), "--no-progress"},
                                      std::chrono::minutes(5));
-  ASSERT_EQ(reference.exit_status, 0) << reference.output;
+  ASSERT_EQ(uninterrupted.exit_status, 0) << uninterrupted.output;
 
   // 2. The same run with a checkpoint at exchange 100, killed (SIGKILL, all processes) once it is written.
   auto scenario = nlohmann::json::parse(read_text(scenario_file));
@@ -107,10 +107,10 @@ TEST(ExactRestart, KilledAfterCheckpointAndResumedGivesTheSameBits) {
   ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("after exchange " + std::to_string(kCheckpointAt)), std::string::npos) << resumed.output;
 
-  expect_same_bits(dir / "reference/results.h5", run / "results.h5");
+  expect_same_bits(dir / "uninterrupted/results.h5", run / "results.h5");
 
   // The restart crossed what makes it hard: rebuilds and bond breakage after the checkpoint.
-  const auto file = h5::File::open_read_only(dir / "reference/results.h5");
+  const auto file = h5::File::open_read_only(dir / "uninterrupted/results.h5");
   const auto broken = h5::read_f64(file, "/timeseries/dem_bonds_broken_tension");
   const auto broken_shear = h5::read_f64(file, "/timeseries/dem_bonds_broken_shear");
   ASSERT_EQ(broken.size(), 200u);
