@@ -209,6 +209,7 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   scenario.run.deadline_s = run.number("deadline_s", 60.0, wait);
   scenario.run.startup_timeout_s = run.number("startup_timeout_s", 20.0, wait);
   scenario.run.snapshot_every = run.integer("snapshot_every", 0, 0);
+  scenario.run.checkpoint_every = run.integer("checkpoint_every", 0, 0);
   if (auto stop = run.optional_child("stop_when")) {
     scenario.run.stop_unbalanced_force_ratio = stop->number("unbalanced_force_ratio", Bounds{0.0, 1.0, true});
     if (!(*scenario.run.stop_unbalanced_force_ratio > 0.0)) stop->fail("unbalanced_force_ratio", "expected a ratio in (0, 1), e.g. 1e-3");

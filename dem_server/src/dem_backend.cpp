@@ -66,7 +66,8 @@ void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, std::vec
 }  // namespace
 
 protocol::SolverIdentity DemBackend::identity() const {
-  return {"dem_server", std::string(project_version()), "dem", {protocol::capability::accepts_interface, protocol::capability::snapshot}};
+  return {"dem_server", std::string(project_version()), "dem",
+          {protocol::capability::accepts_interface, protocol::capability::snapshot, protocol::capability::checkpoint}};
 }
 
 nlohmann::json DemBackend::configure(const nlohmann::json& section) {

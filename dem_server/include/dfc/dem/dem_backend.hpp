@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dfc/dem/cell_servo.hpp"
@@ -48,6 +49,9 @@ class DemBackend final : public protocol::SolverBackend {
   protocol::AdvanceResult advance(const protocol::AdvanceRequest& request) override;
   [[nodiscard]] nlohmann::json monitors() override;
   [[nodiscard]] std::vector<protocol::Array> snapshot(std::string& kind) override;
+  /// Capability checkpoint (dem_checkpoint.cpp): the simulation's running state and the last advance's averages.
+  [[nodiscard]] std::string checkpoint_state() override;
+  void restore_state(std::string_view bytes) override;
 
   /// The model (tests, tools). Throws ProtocolError(out_of_order) before configure.
   [[nodiscard]] const Simulation& simulation() const;

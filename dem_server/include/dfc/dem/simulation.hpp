@@ -42,6 +42,11 @@
 #include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/wall.hpp"
 
+namespace dfc {
+class StateWriter;
+class StateReader;
+}  // namespace dfc
+
 namespace dfc::dem {
 
 struct SimulationSettings {
@@ -136,6 +141,15 @@ class Simulation {
   [[nodiscard]] bool bonds_installed() const noexcept { return bonds_installed_; }
   /// Bonds by state over the particle pairs (all zero for an unbonded law).
   [[nodiscard]] BondCounts bond_counts() const noexcept;
+
+  // Checkpoint (simulation_checkpoint.cpp) ------------------------------------
+  /// Every member that changes while the simulation runs, as raw bytes: the
+  /// contact lists in their order, the Verlet references, the step counters.
+  void save_state(StateWriter& out) const;
+  /// Replaces the running state by save_state()'s of a simulation built from
+  /// the same settings and walls; the next step is the one the saved
+  /// simulation would have taken. Throws StateFormatError when they differ.
+  void load_state(StateReader& in);
 
  private:
   void rebuild();

@@ -1,0 +1,36 @@
+// DemBackend's checkpoint (protocol/SPEC.md §4.7, docs/checkpoints.md): the
+// simulation's running state (Simulation::save_state) and the monitors the
+// last advance averaged. Everything else the backend holds (the servo and
+// triaxial controls, the platen axis, the pile's and the cell's reference
+// lengths, the generation report) follows from the section and the interface
+// mesh, which a resumed run sends again before restore: it is rebuilt, not stored.
+#include "dfc/common/state_archive.hpp"
+#include "dfc/dem/dem_backend.hpp"
+
+namespace dfc::dem {
+
+namespace {
+constexpr std::uint32_t kLayoutVersion = 1;  ///< raise when the stored members change
+}  // namespace
+
+std::string DemBackend::checkpoint_state() {
+  StateWriter out;
+  out.value(kLayoutVersion);
+  sim().save_state(out);
+  out.tag("averages");
+  out.string(averages_.dump());  // numbers as shortest round-trip text: the same doubles come back
+  return out.take();
+}
+
+void DemBackend::restore_state(std::string_view bytes) {
+  StateReader in(bytes, "the dem_server checkpoint");
+  if (in.value<std::uint32_t>() != kLayoutVersion) in.fail("state layout " + std::to_string(kLayoutVersion));
+  sim().load_state(in);
+  in.tag("averages");
+  const std::string averages = in.string();
+  averages_ = nlohmann::json::parse(averages, nullptr, false);
+  if (!averages_.is_object()) in.fail("the averaged monitors as a JSON object");
+  in.finish();
+}
+
+}  // namespace dfc::dem
