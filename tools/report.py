@@ -286,7 +286,8 @@ def table(rows):
     return lines
 
 
-def write_page(record):
+def render_page(record):
+    """docs/results.md as text, from the record alone."""
     out = ["# Measured results",
            "",
            "Written by `./vc report` (`tools/report.py`) from runs of the shipped scenarios; do not edit by hand.",
@@ -313,8 +314,12 @@ def write_page(record):
             out += [f"![{item.name}]({entry['figure']})", ""]
         out += [f"Measured {entry['date_utc']}, commit {entry['commit']}, {entry['machine']}; "
                 f"{entry['wall_s'] / 60:.1f} min. Command: `{entry['command']}`.", ""]
+    return "\n".join(out).rstrip() + "\n"
+
+
+def write_page(record):
     with open(PAGE, "w") as f:
-        f.write("\n".join(out).rstrip() + "\n")
+        f.write(render_page(record))
 
 
 def load_record():
