@@ -5,6 +5,7 @@ write docs/results.md (with its figures under docs/figures/) from what they meas
     tools/report.py BUILD_DIR [ITEM ...]      rerun the items named (default: all of them)
     tools/report.py BUILD_DIR --list          list the items, their scenarios and run times
     tools/report.py BUILD_DIR --page-only     rewrite docs/results.md from docs/results.json
+    tools/report.py BUILD_DIR --remeasure [ITEM ...]   read the last runs again (after a change of what is measured)
 
 Every item is one row of ITEMS below: a shipped scenario (or a command), what
 it shows, and what is read back from its results. A run stores its measured
@@ -78,7 +79,7 @@ def variant_runs(folder):
             particles = None
             if "dem" in run.roles and run.snapshot_count("dem"):
                 arrays = run.snapshot("dem", 0).arrays
-                particles = int(arrays["position"].shape[0]) if "position" in arrays else None
+                particles = int(arrays["particle_radius"].shape[0]) if "particle_radius" in arrays else None
             runs.append((label, run.all_series(), particles))
     return runs
 
@@ -100,7 +101,8 @@ def stress_strain(item, folder):
         stiffness = plot_results.initial_stiffness(strain, stress)
         peaks.append(stress[at_peak])
         stiffnesses.append(stiffness)
-        rows.append({"run": label or item.name, "particles": particles, "peak_kpa": round(stress[at_peak] / 1e3, 1),
+        rows.append({"run": label or item.name, "particles": particles, "stress": "deviator q" if deviator else "axial stress",
+                     "peak_kpa": round(stress[at_peak] / 1e3, 1),
                      "strain_at_peak": float(f"{strain[at_peak]:.3e}"), "stiffness_mpa": round(stiffness / 1e6, 1)})
     summary = []
     if len(runs) > 1:
@@ -241,6 +243,15 @@ def run_item(item, build):
         raise RuntimeError(f"{item.name}: '{shown}' exited with status {status}")
     if item.scenario:  # the scenario as run, so that the variants are read in its order
         shutil.copyfile(os.path.join(ROOT, item.scenario), os.path.join(folder, "scenario.json"))
+    entry = {"date_utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+             "commit": commit(), "machine": machine(), "wall_s": round(wall, 1), "command": shown,
+             "load_average": round(os.getloadavg()[1], 1)}  # over the last 5 min: wall times on a busy machine are long
+    return measure_item(item, entry)
+
+
+def measure_item(item, entry):
+    """Reads the item's last run (results/report/<item>) into `entry`: its rows, summary and figure."""
+    folder = os.path.join(RUNS, item.name)
     rows, summary, runs = item.measure(item, folder)
     if item.figure:
         for other, label in item.overlay_with:
@@ -250,9 +261,7 @@ def run_item(item, build):
                 summary.append(f"(the figure lacks {other} {label}: run `./vc report {other}` first)")
             runs = runs + extra
         write_figure(runs, item.figure)
-    return {"date_utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-            "commit": commit(), "machine": machine(), "wall_s": round(wall, 1), "command": shown,
-            "rows": rows, "summary": summary, "figure": f"figures/{item.figure}.png" if item.figure else ""}
+    return dict(entry, rows=rows, summary=summary, figure=f"figures/{item.figure}.png" if item.figure else "")
 
 
 def write_figure(runs, name):
@@ -271,7 +280,7 @@ def write_figure(runs, name):
 
 # --- the page ---------------------------------------------------------------------------------------
 
-COLUMNS = [("run", "run", "{}"), ("particles", "spheres", "{:,}"), ("peak_kpa", "peak [kPa]", "{:.1f}"),
+COLUMNS = [("run", "run", "{}"), ("particles", "spheres", "{:,}"), ("stress", "stress", "{}"), ("peak_kpa", "peak [kPa]", "{:.1f}"),
            ("strain_at_peak", "axial strain at peak", "{:.2e}"), ("stiffness_mpa", "initial stiffness [MPa]", "{:.1f}"),
            ("late_mean_force_n", "mean pile force, last third of the push [N]", "{:.3f}"),
            ("final_force_n", "final pile force [N]", "{:.3f}")]
@@ -312,8 +321,9 @@ def render_page(record):
             out.append("")
         if entry["figure"]:
             out += [f"![{item.name}]({entry['figure']})", ""]
+        load = f" at a load average of {entry['load_average']}" if "load_average" in entry else ""
         out += [f"Measured {entry['date_utc']}, commit {entry['commit']}, {entry['machine']}; "
-                f"{entry['wall_s'] / 60:.1f} min. Command: `{entry['command']}`.", ""]
+                f"{entry['wall_s'] / 60:.1f} min{load}. Command: `{entry['command']}`.", ""]
     return "\n".join(out).rstrip() + "\n"
 
 
@@ -341,6 +351,8 @@ def main(argv=None):
     parser.add_argument("items", nargs="*", help="items to rerun (default: all); --list names them")
     parser.add_argument("--list", action="store_true", help="list the items and exit")
     parser.add_argument("--page-only", action="store_true", help="rewrite docs/results.md from docs/results.json; run nothing")
+    parser.add_argument("--remeasure", action="store_true",
+                        help="read the items' last runs (results/report/ITEM) again, keeping when, where and how they ran; run nothing")
     args = parser.parse_args(argv)
     by_name = {item.name: item for item in ITEMS}
     if args.list:
@@ -353,7 +365,11 @@ def main(argv=None):
         print(f"report.py: unknown item(s) {', '.join(unknown)}; the items are {', '.join(by_name)}", file=sys.stderr)
         return 2
     record = load_record()
-    if not args.page_only:
+    if args.remeasure:
+        for name in args.items or [n for n in by_name if n in record]:
+            record[name] = measure_item(by_name[name], record[name])
+        save_record(record)
+    elif not args.page_only:
         for name in args.items or list(by_name):
             why = by_name[name].missing()
             if why:
