@@ -231,6 +231,7 @@ def run_item(item, build):
         argv = item.command(build)
         shown = " ".join(os.path.relpath(a, ROOT) if a.startswith(ROOT) else a for a in argv)
     print(f"[report] {item.name}: {shown}", file=sys.stderr, flush=True)
+    checkout = commit()  # before the run: the sources the build was brought up to date with
     start = time.monotonic()
     if item.command:  # its output is what the measure reads
         os.makedirs(folder, exist_ok=True)
@@ -244,7 +245,7 @@ def run_item(item, build):
     if item.scenario:  # the scenario as run, so that the variants are read in its order
         shutil.copyfile(os.path.join(ROOT, item.scenario), os.path.join(folder, "scenario.json"))
     entry = {"date_utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-             "commit": commit(), "machine": machine(), "wall_s": round(wall, 1), "command": shown,
+             "commit": checkout, "machine": machine(), "wall_s": round(wall, 1), "command": shown,
              "load_average": round(os.getloadavg()[1], 1)}  # over the last 5 min: wall times on a busy machine are long
     return measure_item(item, entry)
 
@@ -303,7 +304,9 @@ def render_page(record):
            "`./vc report ITEM` reruns one item and keeps the others as they were, each with the date, commit and",
            "machine of its own run (`+changes`: the working tree differed from that commit). The values are in",
            "[results.json](results.json) too. Tests guard what must not drift (e.g. the calibrated UCS of the",
-           "small sample, `tests/e2e/ucs_test.cpp`); this page shows what the full scenarios give.",
+           "small sample, `tests/e2e/ucs_test.cpp`); this page shows what the full scenarios give. Run times are",
+           "wall times on the machine named; on a shared machine (a load average above its cores) they are",
+           "several times the idle times the README gives.",
            ""]
     for item in ITEMS:
         entry = record.get(item.name)
