@@ -146,7 +146,7 @@ TEST(StressScaling, ScalingADamageBondsHistoryScalesItsForceAndCouple) {
 
 TEST(StressScaling, ScalingASoftBondsHistoryScalesItsForceAndCouple) {
   // Zheng et al. (2023) Table 2 (docs/references.md).
-  expect_scaling_scales_the_load<SoftBondLaw>(make_contact_law({{"law", "soft_bond"}, {"emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_coh_pa", 4.5e5},
+  expect_scaling_scales_the_load<SoftBondLaw>(make_contact_law({{"law", "soft_bond"}, {"sb_emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_coh_pa", 4.5e5},
                                                                  {"sb_ten_pa", 4.5e5}, {"sb_fa_deg", 32}, {"sb_soft", 100}, {"sb_cut", 0.05}}));
 }
 

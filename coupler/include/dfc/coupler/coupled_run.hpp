@@ -1,6 +1,6 @@
 #pragma once
 // CoupledRun: the coupler's job from a validated scenario to a results file
-// (docs/theory/coupling.md, docs/results.md):
+// (docs/theory/coupling.md, docs/outputs.md):
 //   1. start the participants and greet them (versions, capabilities),
 //   2. configure each with its section (scenario hash checked),
 //   3. exchange the interface mesh (continuum -> dem),

@@ -1,5 +1,5 @@
 #pragma once
-// ResultsWriter: the one HDF5 file a run produces (docs/results.md), plus its XDMF
+// ResultsWriter: the one HDF5 file a run produces (docs/outputs.md), plus its XDMF
 // sidecar for ParaView.
 //
 // Layout ("format" = "dfc-results-1"):
