@@ -19,12 +19,6 @@
 namespace dfc::testing {
 namespace {
 
-std::string last_snapshot(const h5::File& file, const std::string& role) {
-  auto names = h5::list_members(file, "/snapshots/" + role);
-  std::sort(names.begin(), names.end());
-  return "/snapshots/" + role + "/" + names.back();
-}
-
 /// Love–Weber stress of the particles whose centres lie in the ring
 /// r_in <= r < r_out and depth band [d_top, d_bottom] below `surface`:
 /// sum V_p sigma_p / V_ring (particle_stress.hpp), and its porosity.
