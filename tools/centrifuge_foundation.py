@@ -82,6 +82,11 @@ class Run:
         near = np.abs(self.h / self.diameter - ratio) <= 0.02
         return float(np.mean(self.force[near])) if near.any() else float("nan")
 
+    def mean_force(self, low, high):
+        """Mean pile force over low D_f <= h_1 <= high D_f (the post-collapse resistance)."""
+        band = (self.h >= low * self.diameter) & (self.h <= high * self.diameter)
+        return float(np.mean(self.force[band])) if band.any() else float("nan")
+
     def initial_peak(self):
         """Largest tip pressure in the initial stage (h_1/D_f <= INITIAL_STAGE), Pa, and where."""
         stage = (self.h >= 0) & (self.h / self.diameter <= INITIAL_STAGE)
@@ -199,11 +204,9 @@ def plot_fig7(run, out):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     snaps = snapshots_of(run.path)
-    _, peak_ratio = run.initial_peak()
-    peak_h = peak_ratio * run.diameter
     times = [t for _, t in snaps]
     h_of = [displacement_at(run, t) - run.contact_at for t in times]
-    collapse = int(np.argmin([abs(h - peak_h) if h > 0 else np.inf for h in h_of]))
+    collapse = [name for name, _ in snaps].index(collapse_snapshot(run))
     chosen = [(collapse, "at the collapse"), (len(snaps) - 1, "at the end")]
     fig, axes = plt.subplots(1, 2, figsize=(10, 5.2), sharey=True)
     counts = {}
@@ -234,13 +237,13 @@ def plot_fig7(run, out):
     return counts
 
 
-def broken_fractions(path, diameter, surface_z):
-    """Fraction of the ever-bonded pairs broken (tension or shear) in the last
-    snapshot: beneath the tip (r <= D_f/2, within 1 D_f below the tip) and in the
-    far field (the outermost ring D_f/2 wide of the body, below the tip level)."""
+def broken_fractions(path, diameter, surface_z, name):
+    """Fraction of the ever-bonded pairs broken (tension or shear) in snapshot
+    `name`: beneath the tip (r <= D_f/2, within 1 D_f below the tip) and in the
+    far field (the outermost ring D_f/2 wide, deeper than 1 D_f below the tip),
+    as tests/e2e/centrifuge_foundation_test.cpp counts them."""
     with h5py.File(path, "r") as f:
-        group = f["snapshots/dem"]
-        snap = group[sorted(group)[-1]]
+        snap = f["snapshots/dem/" + name]
         where = snap["bond_position"][()]
         state = snap["bond_state"][()]
         walls = snap["wall_vertices"][()]
@@ -250,12 +253,21 @@ def broken_fractions(path, diameter, surface_z):
     r = np.hypot(where[:, 0], where[:, 1])
     broken = (state == BOND_TENSION) | (state == BOND_SHEAR)
     below = (r <= 0.5 * diameter) & (where[:, 2] < tip_z) & (where[:, 2] >= tip_z - diameter)
-    far = (r >= r.max() - 0.5 * diameter) & (where[:, 2] < tip_z)
+    far = (r >= r.max() - 0.5 * diameter) & (where[:, 2] < tip_z - diameter)
 
     def fraction(mask):
         return float(broken[mask].mean()) if mask.any() else float("nan")
 
     return {"beneath_tip": fraction(below), "far_field": fraction(far), "whole_body": float(broken.mean()), "tip_z_m": tip_z}
+
+
+def collapse_snapshot(run):
+    """The first DEM snapshot at or after the peak pile force (the collapse below the tip)."""
+    peak_time = run.series["time_s"][int(np.argmax(run.force))]
+    for name, time in snapshots_of(run.path):
+        if time >= peak_time:
+            return name
+    return snapshots_of(run.path)[-1][0]
 
 
 def stress_grid(run, nr=6, nz=8):
@@ -349,8 +361,10 @@ def main(argv=None):
             "pile_start_time_s": float(run.series["time_s"][np.argmax(run.displacement > 0)]) if (run.displacement > 0).any() else None,
             "contact_at_m": run.contact_at,
             "force_n_at_h_0.5D": run.force_at(0.5), "force_n_at_h_1D": run.force_at(1.0),
+            "mean_force_n_0.25_to_1D": run.mean_force(0.25, 1.0), "peak_force_n": float(np.max(run.force)),
             "initial_peak_pressure_pa": peak, "initial_peak_at_h_over_D": where,
-            "broken_fraction": broken_fractions(run.path, run.diameter, run.surface_z),
+            "broken_fraction_at_collapse": broken_fractions(run.path, run.diameter, run.surface_z, collapse_snapshot(run)),
+            "broken_fraction_at_end": broken_fractions(run.path, run.diameter, run.surface_z, snapshots_of(run.path)[-1][0]),
             "bonds_final": {k: run.series["dem_bonds_" + k][-1] for k in ("intact", "damaged", "broken_tension", "broken_shear")},
         }
     for g, members in groups.items():
@@ -359,8 +373,11 @@ def main(argv=None):
             "force_n_at_h_0.5D": spread([r.force_at(0.5) for r in members]),
             "force_n_at_h_1D": spread([r.force_at(1.0) for r in members]),
             "initial_peak_pressure_pa": spread([r.initial_peak()[0] for r in members]),
-            "broken_fraction_beneath_tip": spread([summary["runs"][r.label]["broken_fraction"]["beneath_tip"] for r in members]),
-            "broken_fraction_far_field": spread([summary["runs"][r.label]["broken_fraction"]["far_field"] for r in members]),
+            "peak_force_n": spread([float(np.max(r.force)) for r in members]),
+            "mean_force_n_0.25_to_1D": spread([r.mean_force(0.25, 1.0) for r in members]),
+            "broken_fraction_at_collapse_beneath_tip": spread([summary["runs"][r.label]["broken_fraction_at_collapse"]["beneath_tip"] for r in members]),
+            "broken_fraction_at_collapse_far_field": spread([summary["runs"][r.label]["broken_fraction_at_collapse"]["far_field"] for r in members]),
+            "broken_fraction_at_end_whole_body": spread([summary["runs"][r.label]["broken_fraction_at_end"]["whole_body"] for r in members]),
             "wall_time_s": spread([r.summary.get("wall_time_s", float("nan")) for r in members]),
         }
     rate = [r for r in runs if r.velocity != base_velocity]
@@ -374,11 +391,12 @@ def main(argv=None):
                 "relative_change": slow.force_at(0.5) / fast.force_at(0.5) - 1.0})
     with open(os.path.join(out, "summary.json"), "w", encoding="utf-8") as handle:
         json.dump(summary, handle, indent=1, default=float)
+    def text(entry):
+        return f"{entry['mean']:.1f} N [{entry.get('min', float('nan')):.1f}, {entry.get('max', float('nan')):.1f}]"
+
     for g, entry in summary["g_levels"].items():
-        f = entry["force_n_at_h_0.5D"]
-        f1 = entry["force_n_at_h_1D"]
-        print(f"{g:>5} g: F(h=0.5 D_f) {f['mean']:.1f} N [{f.get('min', float('nan')):.1f}, {f.get('max', float('nan')):.1f}], "
-              f"F(h=1 D_f) {f1['mean']:.1f} N [{f1.get('min', float('nan')):.1f}, {f1.get('max', float('nan')):.1f}]")
+        print(f"{g:>5} g: peak {text(entry['peak_force_n'])}, mean over 0.25-1 D_f {text(entry['mean_force_n_0.25_to_1D'])}, "
+              f"F(h=0.5 D_f) {text(entry['force_n_at_h_0.5D'])}, F(h=1 D_f) {text(entry['force_n_at_h_1D'])}")
     for check in summary.get("rate_check", []):
         print(f"rate check {check['label']}: F(h=0.5 D_f) {check['force_n_at_h_0.5D']:.1f} N at {check['velocity_m_s']} m/s vs "
               f"{check['base_force_n_at_h_0.5D']:.1f} N at {check['base_velocity_m_s']} m/s ({100 * check['relative_change']:+.1f} %)")
