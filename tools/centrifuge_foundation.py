@@ -135,47 +135,41 @@ def band(runs, grid, values_of):
     return np.nanmean(curves, axis=0), np.nanmin(curves, axis=0), np.nanmax(curves, axis=0)
 
 
-def plot_fig5(groups, out):
+def plot_bands(groups, path, extent, values_of, x_of, y_scale, labels):
+    """One curve per g-level: the mean over its packings of values_of(run) against
+    h_1 from 0 to extent(runs), shaded between the packings' min and max."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     for g, runs in groups.items():
-        d = runs[0].diameter
-        grid = np.linspace(0.0, max(np.nanmax(r.h) for r in runs), 400)
-        mean, low, high = band(runs, grid, lambda r: r.force)
-        line, = ax.plot(1e3 * grid, mean, label=f"{g:g} g ({len(runs)} packings)")
-        ax.fill_between(1e3 * grid, low, high, color=line.get_color(), alpha=0.25, lw=0)
-    ax.axvline(1e3 * d, color="0.6", ls=":", lw=1)
-    ax.set_xlabel("penetration h$_1$ (mm, model scale)")
-    ax.set_ylabel("foundation force (N)")
-    ax.set_title("Load-displacement (mean, min-max over packings)")
+        grid = np.linspace(0.0, extent(runs), 400)
+        mean, low, high = band(runs, grid, values_of)
+        x = x_of(grid, runs[0])
+        line, = ax.plot(x, y_scale * mean, label=f"{g:g} g ({len(runs)} packings)")
+        ax.fill_between(x, y_scale * low, y_scale * high, color=line.get_color(), alpha=0.25, lw=0)
+    ax.set_xlabel(labels[0])
+    ax.set_ylabel(labels[1])
+    ax.set_title(labels[2])
     ax.legend()
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig5_load_displacement.png"), dpi=130)
+    fig.savefig(path, dpi=130)
     plt.close(fig)
+
+
+def plot_fig5(groups, out):
+    plot_bands(groups, os.path.join(out, "fig5_load_displacement.png"), lambda runs: max(np.nanmax(r.h) for r in runs),
+               lambda r: r.force, lambda grid, run: 1e3 * grid, 1.0,
+               ("penetration h$_1$ (mm, model scale; D$_f$ = 12 mm)", "foundation force (N)",
+                "Load-displacement (mean, min-max over packings)"))
 
 
 def plot_fig6(groups, out):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    for g, runs in groups.items():
-        d = runs[0].diameter
-        grid = np.linspace(0.0, INITIAL_STAGE * d, 300)
-        mean, low, high = band(runs, grid, lambda r: r.tip / r.area)
-        line, = ax.plot(grid / d, 1e-6 * mean, label=f"{g:g} g")
-        ax.fill_between(grid / d, 1e-6 * low, 1e-6 * high, color=line.get_color(), alpha=0.25, lw=0)
-    ax.set_xlabel("h$_1$ / D$_f$")
-    ax.set_ylabel("mean pressure under the foundation (MPa)")
-    ax.set_title("Initial stage: elastic response, then collapse below the tip")
-    ax.legend()
-    ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "fig6_initial_stage.png"), dpi=130)
-    plt.close(fig)
+    plot_bands(groups, os.path.join(out, "fig6_initial_stage.png"), lambda runs: INITIAL_STAGE * runs[0].diameter,
+               lambda r: r.tip / r.area, lambda grid, run: grid / run.diameter, 1e-6,
+               ("h$_1$ / D$_f$", "mean pressure under the foundation (MPa)",
+                "Initial stage: elastic response, then collapse below the tip"))
 
 
 def section_bonds(snapshot, half_thickness):

@@ -5,20 +5,16 @@
 #include "dfc/dem/dem_backend.hpp"
 #include "dfc/dem/foundation_loading.hpp"
 #include "dfc/dem/wall_builders.hpp"
+#include "dem_test_support.hpp"
 
 namespace dfc::dem {
 namespace {
 
+/// The free-falling bed of dem_test_support.hpp on a floor.
 nlohmann::json falling_bed() {
-  return {{"particles",
-           {{"generator", "lattice"},
-            {"region", {{"type", "cylinder"}, {"radius_m", 0.03}, {"z_min_m", 0.0}, {"z_max_m", 0.03}}},
-            {"radius_min_m", 0.003},
-            {"radius_max_m", 0.004},
-            {"density_kg_m3", 2650}}},
-          {"contact", {{"kn_n_m", 1e5}, {"ks_n_m", 1e5}}},
-          {"gravity_m_s2", {0, 0, -98.1}},
-          {"walls", {{{"type", "plane"}, {"point_m", {0, 0, 0}}, {"normal", {0, 0, 1}}}}}};
+  nlohmann::json config = test::cylinder_bed_under_gravity();
+  config["walls"] = {{{"type", "plane"}, {"point_m", {0, 0, 0}}, {"normal", {0, 0, 1}}}};
+  return config;
 }
 
 protocol::AdvanceRequest steps(std::int64_t n, double dt) {
