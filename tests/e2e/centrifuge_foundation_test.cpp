@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 
 #include "command_runner.hpp"
 #include "dfc/common/hdf5_file.hpp"
@@ -128,34 +129,35 @@ TEST(CentrifugeFoundation, ARunRepeatsBitForBit) {
   EXPECT_EQ(h5::read_i64(a, last + "/bond_state"), h5::read_i64(b, last + "/bond_state"));
 }
 
-/// Mean pile force within 0.02 D_f of a penetration of 1 D_f (the force of a
-/// bonded rock jumps as bonds break; tools/centrifuge_foundation.py reads it so).
-double force_at_one_diameter(const std::filesystem::path& results) {
+/// Mean pile force over penetrations 0.25 D_f to 1 D_f: the resistance after
+/// the collapse below the tip (a single record's force jumps by tens of per
+/// cent as bonds break; tools/centrifuge_foundation.py reads it the same way).
+double mean_resistance(const std::filesystem::path& results) {
   const auto force = series(results, "dem_pile_force_n");
   const auto moved = series(results, "dem_pile_displacement_m");
   double sum = 0.0;
   int n = 0;
   for (std::size_t k = 0; k < force.size(); ++k)
-    if (std::abs(moved[k] / kDiameter - 1.0) <= 0.02) {
+    if (moved[k] >= 0.25 * kDiameter && moved[k] <= kDiameter) {
       sum += force[k];
       ++n;
     }
-  EXPECT_GT(n, 10);
+  EXPECT_GT(n, 100);
   return sum / n;
 }
 
 TEST(CentrifugeFoundationSlow, ResistanceGrowsWithTheGLevelBeyondTheScatter) {
   // The same REV (rev.stress_pa fixed) at 1 g and 100 g on three packings:
-  // only the self-weight stress scaled into the bonds and gravity differ. At
-  // a penetration of 1 D_f every 100 g packing must resist more than every
-  // 1 g packing (measured 132-179 N against 67-106 N). The initial peak does
-  // not separate (the packing decides it: docs/centrifuge_foundation.md §4).
+  // only the self-weight stress scaled into the bonds and gravity differ.
+  // Over the same penetrations every 100 g packing must resist more than
+  // every 1 g packing (measured 93-109 N against 79-86 N). The initial peak
+  // does not separate: the packing decides it (docs/centrifuge_foundation.md §4).
   const std::filesystem::path dir = run_scenario("centrifuge_pile_glevels");
-  double lowest_100g = INFINITY, highest_1g = 0.0;
+  double lowest_100g = std::numeric_limits<double>::infinity(), highest_1g = 0.0;
   for (const char* packing : {"p1", "p2", "p3"}) {
-    const double at_1g = force_at_one_diameter(dir / (std::string("g1_") + packing) / "results.h5");
-    const double at_100g = force_at_one_diameter(dir / (std::string("g100_") + packing) / "results.h5");
-    std::cout << "packing " << packing << ": F(h = D_f) " << at_1g << " N at 1 g, " << at_100g << " N at 100 g\n";
+    const double at_1g = mean_resistance(dir / (std::string("g1_") + packing) / "results.h5");
+    const double at_100g = mean_resistance(dir / (std::string("g100_") + packing) / "results.h5");
+    std::cout << "packing " << packing << ": mean force over 0.25-1 D_f " << at_1g << " N at 1 g, " << at_100g << " N at 100 g\n";
     highest_1g = std::max(highest_1g, at_1g);
     lowest_100g = std::min(lowest_100g, at_100g);
   }
