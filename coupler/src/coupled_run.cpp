@@ -48,6 +48,14 @@ bool every_in_equilibrium(const std::map<std::string, nlohmann::json>& monitors,
   return true;
 }
 
+/// True when the number monitor behind time-series column `column`
+/// ("<slot>_<monitor>", run.stop_when.monitor) is at least `threshold`.
+bool monitor_reached(const std::map<std::string, nlohmann::json>& monitors, const std::string& column, double threshold) {
+  for (const auto& [slot, values] : monitors)
+    if (column.starts_with(slot + "_") && scalar_monitor(values, column.c_str() + slot.size() + 1) >= threshold) return true;
+  return false;
+}
+
 /// The [x, y, z] monitor `name`, or nullopt when the server did not send it.
 /// Entries that are not numbers read as NaN, so the balance check catches them.
 std::optional<std::array<double, 3>> vector_monitor(const nlohmann::json& monitors, const char* name) {
@@ -505,6 +513,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
                                                                   std::chrono::duration<double>(loop.wall_time_s));
     auto last_flush = std::chrono::steady_clock::now();
     bool equilibrium_reached = false;
+    bool monitor_stop_reached = false;
     const auto write_checkpoint = [&] {
       loop.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
       checkpoints.write(participants, {scenario.document, solvers, writer->resume_point(), recorder.sources(), loop}, deadline);
@@ -646,6 +655,11 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
         equilibrium_reached = true;
         break;
       }
+      if (scenario.run.stop_monitor && done >= scenario.run.stop_min_exchanges &&
+          monitor_reached(monitors, *scenario.run.stop_monitor, scenario.run.stop_monitor_at_least)) {
+        monitor_stop_reached = true;
+        break;
+      }
     }
     progress.finish();
     // Step 6: final snapshot and summary.
@@ -662,6 +676,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
                               {"force_balance_unchecked_exchanges", unchecked_balances},
                               {"stopped_by_signal", status == 130}};
     if (scenario.run.stop_unbalanced_force_ratio) summary["equilibrium_reached"] = equilibrium_reached;
+    if (scenario.run.stop_monitor) summary["stop_monitor_reached"] = monitor_stop_reached;
     writer->set_attribute("summary", summary.dump());
     writer->close();
     stop_all();
@@ -676,6 +691,9 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     if (scenario.run.stop_unbalanced_force_ratio)
       text << (equilibrium_reached ? " Equilibrium reached: every unbalanced_force_ratio <= " : " Equilibrium NOT reached within run.exchanges: some unbalanced_force_ratio > ")
            << *scenario.run.stop_unbalanced_force_ratio << " (run.stop_when).";
+    if (scenario.run.stop_monitor)
+      text << (monitor_stop_reached ? " Stopped when " : " Did NOT reach ") << *scenario.run.stop_monitor << " >= "
+           << scenario.run.stop_monitor_at_least << " (run.stop_when).";
     if (std::isfinite(peak_pile_force))
       text << " Pile penetration " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, final pile force "
            << scalar_monitor(monitors["dem"], "pile_force_n") << " N (peak " << peak_pile_force << " N).";

@@ -267,6 +267,7 @@ void ResultsWriter::write_snapshot(const std::string& role, std::int64_t step, d
     entry.arrays.push_back({array.name, array.dtype, array.shape});
   }
   if (const std::optional<std::int64_t> points = polyvertex_point_count(entry)) s.ensure_polyvertex_connectivity(*points);
+  if (const std::optional<std::int64_t> bonds = bond_point_count(entry)) s.ensure_polyvertex_connectivity(*bonds);
   ++index;
   s.catalogue.push_back(std::move(entry));
   s.sidecar_stale = true;

@@ -7,6 +7,7 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/dem/cell_stress.hpp"
+#include "dfc/dem/foundation_loading.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
 #include "dfc/dem/region_config.hpp"
@@ -78,7 +79,14 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   interface_wall_.reset();
   generation_removed_by_interface_ = 0;
   averages_ = nlohmann::json::object();
-  if (model_.pile_wall) pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
+  pile_tip_.clear();
+  pile_waiting_ = false;
+  if (model_.pile_wall) {
+    pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
+    pile_tip_ = pile_tip_facets(sim().walls()[*model_.pile_wall], pile_direction());
+    pile_waiting_ = config_.pile->start_when.has_value();
+    pile_start_step_ = config_.pile->start_step;
+  }
   ucs_axis_.reset();
   if (config_.ucs) {  // build_model adds the configured walls first, in order: same indices
     const auto& walls = sim().walls();
@@ -157,6 +165,8 @@ nlohmann::json DemBackend::monitor_units() const {
     units[stress] = pascal;
   units["total_weight_n"] = newton;
   units["pile_force_n"] = newton;
+  units["pile_tip_force_n"] = newton;
+  units["pile_shaft_force_n"] = newton;
   units["pile_displacement_m"] = metre;
   units["dt_critical_s"] = second;
   for (const Wall& wall : simulation().walls()) {
@@ -258,10 +268,14 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   const auto& walls = s.walls();
   std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
-  Vec3 reaction_sum;
+  Vec3 reaction_sum, pile_tip_sum;
   Vec3 cell_stress_sum;
   double axial_sum = 0.0, lateral_sum = 0.0;
+  const bool ramping = model_.pile_wall && !pile_waiting_ && s.step_count() + request.n_steps > pile_start_step_ &&
+                       s.step_count() < pile_start_step_ + config_.pile->ramp_steps;
   for (std::int64_t step = 0; step < request.n_steps; ++step) {
+    if (ramping && s.step_count() >= pile_start_step_)
+      s.set_wall_velocity(*model_.pile_wall, ramped_velocity(config_.pile->velocity, s.step_count() - pile_start_step_, config_.pile->ramp_steps));
     if (cell_servo_) {
       cell_stress_sum += servo_step(s, *cell_servo_, request.dt).diagonal();
     } else if (triaxial_) {
@@ -281,6 +295,13 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
       for (std::size_t v = 0; v < node_force_sum.size(); ++v) node_force_sum[v] += wall.vertex_force[v];
       reaction_sum += wall.force_on_particles;
     }
+    if (model_.pile_wall) pile_tip_sum += facets_force(walls[*model_.pile_wall], pile_tip_);
+  }
+  if (pile_waiting_ && pile_may_start(*config_.pile->start_when, s.step_count(), config_.pile->start_step, measure(s).unbalanced_force_ratio)) {
+    pile_start_step_ = s.step_count();
+    s.set_wall_velocity(*model_.pile_wall, ramped_velocity(config_.pile->velocity, 0, config_.pile->ramp_steps));
+    pile_waiting_ = false;
+    std::cerr << "dem_server: pile starts at step " << s.step_count() << " (pile.start_when met)" << std::endl;
   }
   const double inv_n = 1.0 / double(request.n_steps);
 
@@ -305,7 +326,13 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["lateral_stress_pa"] = inv_n * lateral_sum;
     averages_["deviatoric_stress_pa"] = inv_n * (axial_sum - lateral_sum);
   }
-  if (model_.pile_wall) averages_["pile_force_n"] = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
+  if (model_.pile_wall) {
+    const double total = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
+    const double tip = -dot(inv_n * pile_tip_sum, pile_direction());
+    averages_["pile_force_n"] = total;
+    averages_["pile_tip_force_n"] = tip;
+    averages_["pile_shaft_force_n"] = total - tip;
+  }
   if (interface_wall_) {
     double power = 0.0;
     for (std::size_t v = 0; v < node_force_sum.size(); ++v) {
@@ -389,7 +416,8 @@ nlohmann::json DemBackend::monitors() {
   }
   if (model_.pile_wall) {
     out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());
-    if (!out.contains("pile_force_n")) out["pile_force_n"] = 0.0;
+    for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
+      if (!out.contains(force)) out[force] = 0.0;
   }
   return out;
 }

@@ -137,9 +137,13 @@ DemModel build_model(const DemConfig& c) {
 
   // 1. Rigid walls and the pile.
   for (const auto& w : c.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
-  if (c.pile)
-    model.pile_wall = sim.add_wall(make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
-                                             c.pile->velocity, c.pile->start_step));
+  if (c.pile) {
+    // A pile that starts at equilibrium rests until DemBackend sets it moving (foundation_loading.hpp).
+    Wall pile = make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
+                          c.pile->start_when ? Vec3{} : c.pile->velocity, c.pile->start_step);
+    pile.facet_force.resize(pile.facet_count());  // its tip and shaft forces
+    model.pile_wall = sim.add_wall(std::move(pile));
+  }
 
   // 2. Particles; a generated sphere cut by a rigid wall would start with a huge overlap.
   if (c.particles.pcrm) {

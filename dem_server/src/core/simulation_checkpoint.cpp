@@ -42,6 +42,7 @@ struct WallLayout {
   std::vector<Facet> facets;
   std::vector<Vec3> vertex_force;
   Vec3 force, moment, force_on_particles;
+  std::vector<Vec3> facet_force;
 };
 static_assert(sizeof(Wall) == sizeof(WallLayout), "a Wall field is missing from Simulation::save_state");
 
@@ -126,6 +127,7 @@ void write_wall(StateWriter& out, const Wall& w) {
   out.value(w.force);
   out.value(w.moment);
   out.value(w.force_on_particles);
+  out.vector(w.facet_force);
 }
 
 void read_wall(StateReader& in, Wall& w) {
@@ -148,6 +150,9 @@ void read_wall(StateReader& in, Wall& w) {
   in.value(w.force);
   in.value(w.moment);
   in.value(w.force_on_particles);
+  const std::size_t facet_forces = w.facet_force.size();
+  in.vector(w.facet_force);
+  if (w.facet_force.size() != facet_forces) in.fail("wall \"" + w.name + "\" with " + std::to_string(facet_forces) + " facet forces");
 }
 
 void write_wall_contacts(StateWriter& out, const WallContacts& c) {

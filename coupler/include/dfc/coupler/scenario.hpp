@@ -54,6 +54,11 @@ struct RunSpec {
   /// this (equilibrium); `exchanges` is then the most it may take.
   std::optional<double> stop_unbalanced_force_ratio;
   std::int64_t stop_min_exchanges = 1;  ///< run.stop_when.min_exchanges: never before this many
+  /// run.stop_when.monitor / at_least: the run also ends at the first exchange
+  /// after which this time-series column (e.g. "dem_pile_displacement_m", a
+  /// number monitor named "<slot>_<monitor>") is at least `stop_monitor_at_least`.
+  std::optional<std::string> stop_monitor;
+  double stop_monitor_at_least = 0.0;
 };
 
 struct Scenario {

@@ -12,6 +12,7 @@
 #include "dfc/dem/bed_generator.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/equilibrium_target.hpp"
+#include "dfc/dem/foundation_loading.hpp"
 #include "dfc/dem/pcrm_generation.hpp"
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/radius_expansion.hpp"
@@ -43,6 +44,8 @@ struct PileConfig {
   CylinderGeometry geometry;
   Vec3 velocity;  ///< m/s
   std::int64_t start_step = 0;
+  std::optional<PileStartRule> start_when;  ///< rest until equilibrium (foundation_loading.hpp)
+  std::int64_t ramp_steps = 0;              ///< steps over which the velocity rises from 0 (foundation_loading.hpp)
   ContactLawSetting contact;
 };
 
