@@ -34,7 +34,7 @@ run() {  # name, extra options
 }
 # The conventional expansion targets a porosity of 0.47: at the PCRM body's
 # 0.434 (and at the REV's own target, 0.45) the rigid container jams and the
-# expansion goes unstable (docs/dem_generation.md §7). Each settling stage is
+# expansion goes unstable (docs/dem_generation.md §8). Each settling stage is
 # capped at 25 000 steps; a route that hits the cap prints eq = NO.
 CONVENTIONAL=(--porosity 0.47 --max-steps 25000)
 case $SIZES in

@@ -218,6 +218,15 @@ void Dataset::append_f64(std::span<const double> values) {
         "cannot append to dataset " + object_name(id()));
 }
 
+void Dataset::truncate_rows(std::int64_t rows) {
+  const Handle space = dataspace_of(id());
+  std::vector<hsize_t> extent = extent_of(space.get());
+  if (extent.empty() || rows < 0 || hsize_t(rows) > extent[0])
+    throw Error("truncate_rows: dataset " + object_name(id()) + " has fewer than " + std::to_string(rows) + " rows");
+  extent[0] = hsize_t(rows);
+  check(H5Dset_extent(id(), extent.data()), "cannot shrink dataset " + object_name(id()));
+}
+
 std::vector<double> Dataset::read_f64() const { return read_all<double>(id(), H5T_NATIVE_DOUBLE); }
 std::vector<std::int64_t> Dataset::read_i64() const { return read_all<std::int64_t>(id(), H5T_NATIVE_INT64); }
 
@@ -350,6 +359,26 @@ File File::create(const std::filesystem::path& path) {
   return File(Handle(id, H5Fclose), path);
 }
 
+void Group::remove(const std::string& name) const {
+  silence_error_printing();
+  check(H5Ldelete(id(), name.c_str(), H5P_DEFAULT), "cannot remove '" + name + "' from " + object_name(id()));
+}
+
+File File::open_read_write(const std::filesystem::path& path) {
+  silence_error_printing();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw UserError("cannot open HDF5 file '" + path.string() + "' for writing: no such file; check the path.");
+  const Handle fapl = unlocked_fapl();
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get());
+  if (id < 0) {
+    const std::string detail = take_error_detail();
+    throw UserError("cannot open HDF5 file '" + path.string() + "' for writing" + (detail.empty() ? "" : " (" + detail + ")") +
+                    "; is it an HDF5 file, and is it not open in another program?");
+  }
+  return File(Handle(id, H5Fclose), path);
+}
+
 File File::open_read_only(const std::filesystem::path& path) {
   silence_error_printing();
   std::error_code ec;
@@ -405,6 +434,10 @@ bool has_attribute(hid_t object, const std::string& name) {
   const htri_t present = H5Aexists(object, name.c_str());
   if (present < 0) fail("cannot query attribute '" + name + "' of " + object_name(object));
   return present > 0;
+}
+
+void remove_attribute(hid_t object, const std::string& name) {
+  if (has_attribute(object, name)) check(H5Adelete(object, name.c_str()), "cannot delete attribute '" + name + "' of " + object_name(object));
 }
 
 std::string read_string_attribute(hid_t object, const std::string& name) {

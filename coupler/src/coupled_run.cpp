@@ -21,6 +21,7 @@
 #include "dfc/common/version.hpp"
 #include "dfc/coupler/progress_line.hpp"
 #include "dfc/coupler/results_writer.hpp"
+#include "dfc/coupler/run_checkpoint.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 
@@ -45,6 +46,14 @@ bool every_in_equilibrium(const std::map<std::string, nlohmann::json>& monitors,
   for (const auto& [slot, values] : monitors)
     if (!(scalar_monitor(values, "unbalanced_force_ratio") <= limit)) return false;
   return true;
+}
+
+/// True when the number monitor behind time-series column `column`
+/// ("<slot>_<monitor>", run.stop_when.monitor) is at least `threshold`.
+bool monitor_reached(const std::map<std::string, nlohmann::json>& monitors, const std::string& column, double threshold) {
+  for (const auto& [slot, values] : monitors)
+    if (column.starts_with(slot + "_") && scalar_monitor(values, column.c_str() + slot.size() + 1) >= threshold) return true;
+  return false;
 }
 
 /// The [x, y, z] monitor `name`, or nullopt when the server did not send it.
@@ -198,6 +207,10 @@ std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& con
   for (auto& p : participants) {
     p->configure(milliseconds_from_seconds(scenario.run.deadline_s));
     check_snapshot_memory(*p, milliseconds_from_seconds(scenario.run.deadline_s));
+    if (scenario.run.checkpoint_every > 0 && !p->has(protocol::capability::checkpoint))
+      throw ConfigError("run.checkpoint_every", "'" + p->spec().program + "' (" + p->info().solver_name + "), the " + p->spec().slot +
+                                                    " server, lacks capability 'checkpoint' (SPEC.md §4.7): it cannot write its state, so this run "
+                                                    "could not be resumed; remove run.checkpoint_every or use a server that has it");
     if (coupled) {
       const char* needed = p->spec().slot == "dem" ? protocol::capability::accepts_interface : protocol::capability::provides_interface;
       if (!p->has(needed))
@@ -237,6 +250,17 @@ class RunRecorder {
         for (std::size_t i = 0; i < column.width; ++i) row.push_back(fits ? (*value)[i].get<double>() : kNaN);
     }
     writer_.append(row);
+  }
+
+  /// Where each column comes from, for a checkpoint (empty before the first row).
+  [[nodiscard]] nlohmann::json sources() const {
+    nlohmann::json out = nlohmann::json::array();
+    for (const Source& c : columns_) out.push_back({{"slot", c.slot}, {"key", c.key}, {"width", c.width}});
+    return out;
+  }
+  /// A resumed run: the columns the results file already declares.
+  void resume(const nlohmann::json& sources) {
+    for (const auto& c : sources) columns_.push_back({c.at("slot").get<std::string>(), c.at("key").get<std::string>(), c.at("width").get<std::size_t>()});
   }
 
  private:
@@ -350,10 +374,13 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
   std::error_code ec;
   fs::create_directories(log_dir, ec);
   if (ec) throw UserError("cannot create the output folder '" + log_dir.string() + "': " + ec.message() + "; choose another with --out");
-  {
+  if (!options.resume) {  // a resumed run reads its scenario from this copy
     std::ofstream copy(out_dir / "scenario.json");
     copy << readable_json(scenario.document) << "\n";
   }
+  const RunCheckpoints checkpoints(out_dir);
+  // Read before any server starts: a run without a checkpoint is refused at once.
+  const std::optional<CouplerCheckpoint> resumed = options.resume ? std::optional(checkpoints.read()) : std::nullopt;
 
   zmq::context_t context(1);
   StopRequest stop(options.stop_requested);
@@ -385,6 +412,12 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     Participant* dem = nullptr;
     Participant* continuum = nullptr;
     for (auto& p : participants) (p->spec().slot == "dem" ? dem : continuum) = p.get();
+    if (resumed) {
+      RunCheckpoints::check_resumable(*resumed, scenario, participants);
+      for (auto& p : participants)
+        if (!p->has(protocol::capability::checkpoint))
+          throw UserError("cannot resume: the " + p->spec().slot + " server '" + p->spec().program + "' lacks capability 'checkpoint'");
+    }
     const bool coupled = dem != nullptr && continuum != nullptr;
     const milliseconds deadline = milliseconds_from_seconds(scenario.run.deadline_s);
 
@@ -414,14 +447,31 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
                                   {"version", p->info().solver_version},
                                   {"protocol", p->info().protocol_version},
                                   {"configured", p->configured_info()}};
-    writer = std::make_unique<ResultsWriter>(out_dir / "results.h5", scenario.document, versions);
+    // Step 5 of a resumed run: every server continues from its checkpoint, the results file from where the checkpoint left it.
+    if (resumed) {
+      checkpoints.restore(participants, resumed->loop, deadline);
+      writer = std::make_unique<ResultsWriter>(ResultsWriter::reopen(out_dir / "results.h5", resumed->results));
+    } else {
+      writer = std::make_unique<ResultsWriter>(out_dir / "results.h5", scenario.document, versions);
+    }
     std::map<std::string, nlohmann::json> declared_units;
     for (auto& p : participants) declared_units[p->spec().slot] = p->configured_info().value(protocol::monitor_units_key, nlohmann::json());
     RunRecorder recorder(*writer, std::move(declared_units));
-    write_snapshots(*writer, participants, 0.0, deadline);
-    writer->flush();
+    if (resumed) {
+      recorder.resume(resumed->recorder);
+    } else {
+      write_snapshots(*writer, participants, 0.0, deadline);
+      writer->flush();
+    }
+    nlohmann::json solvers = nlohmann::json::object();
+    for (auto& p : participants) solvers[p->spec().slot] = {{"name", p->info().solver_name}, {"version", p->info().solver_version}};
+    // Checkpoints need every server's capability; without run.checkpoint_every a stop by signal still writes one where they have it.
+    bool can_checkpoint = true;
+    for (auto& p : participants) can_checkpoint = can_checkpoint && p->has(protocol::capability::checkpoint);
 
-    log << "Run '" << scenario.name << "': " << scenario.run.exchanges << " exchanges";
+    log << (resumed ? "Resuming run '" : "Run '") << scenario.name << "'";
+    if (resumed) log << " after exchange " << resumed->loop.exchanges_done;
+    log << ": " << scenario.run.exchanges << " exchanges";
     if (dem) log << ", " << timing.dem_steps_per_exchange << " DEM step(s) of " << timing.dt_dem << " s";
     if (continuum) log << ", " << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s";
     if (coupled) log << ", " << n_nodes << " interface nodes";
@@ -436,26 +486,47 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     // so the coupler tracks where it has moved the wall (x += v·dt, step by
     // step, as the DEM does) and adds the correction that brings the wall onto
     // the continuum's displacement: v_sent = v + (u_continuum − u_wall) / T.
-    std::vector<double> velocity(std::size_t(n_nodes) * 3, 0.0);
-    std::vector<double> continuum_displacement(velocity.size(), 0.0);
-    std::vector<double> wall_displacement(velocity.size(), 0.0);
-    std::int64_t dem_step = 0;
-    std::int64_t continuum_step = 0;
-    double worst_balance = 0.0;
+    // Everything the loop carries between exchanges is in `loop` (run_checkpoint.hpp), so a checkpoint holds it all.
+    LoopState loop;
+    if (resumed) {
+      loop = resumed->loop;
+    } else {
+      loop.velocity.assign(std::size_t(n_nodes) * 3, 0.0);
+      loop.continuum_displacement.assign(loop.velocity.size(), 0.0);
+      loop.wall_displacement.assign(loop.velocity.size(), 0.0);
+    }
+    std::vector<double>& velocity = loop.velocity;
+    std::vector<double>& continuum_displacement = loop.continuum_displacement;
+    std::vector<double>& wall_displacement = loop.wall_displacement;
+    std::int64_t& dem_step = loop.dem_step;
+    std::int64_t& continuum_step = loop.continuum_step;
+    double& worst_balance = loop.worst_balance;
     // Exchanges at which a side sent no interface force monitor (SPEC.md §6.3
     // names them, but a server may omit them): the balance was not checked there.
-    std::int64_t unchecked_balances = 0;
-    std::string missing_balance_monitors;
-    double peak_pile_force = kNaN;
+    std::int64_t& unchecked_balances = loop.unchecked_balances;
+    std::string& missing_balance_monitors = loop.missing_balance_monitors;
+    double& peak_pile_force = loop.peak_pile_force;
+    std::int64_t& done = loop.exchanges_done;
+    std::map<std::string, nlohmann::json>& monitors = loop.monitors;
     ProgressLine progress(std::cerr, scenario.name, scenario.run.exchanges, options.progress);
-    const auto wall_start = std::chrono::steady_clock::now();
-    auto last_flush = wall_start;
-    std::int64_t done = 0;
+    const auto wall_start = std::chrono::steady_clock::now() - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                                  std::chrono::duration<double>(loop.wall_time_s));
+    auto last_flush = std::chrono::steady_clock::now();
     bool equilibrium_reached = false;
-    std::map<std::string, nlohmann::json> monitors;
-    for (std::int64_t exchange = 0; exchange < scenario.run.exchanges; ++exchange) {
+    bool monitor_stop_reached = false;
+    const auto write_checkpoint = [&] {
+      loop.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+      checkpoints.write(participants, {scenario.document, solvers, writer->resume_point(), recorder.sources(), loop}, deadline);
+      last_flush = std::chrono::steady_clock::now();
+    };
+    for (std::int64_t exchange = loop.exchanges_done; exchange < scenario.run.exchanges; ++exchange) {
       if (options.stop_requested != nullptr && options.stop_requested->load()) {
         status = 130;
+        // Stopped at an exchange boundary with every server answering: a checkpoint, so that `run --resume` continues from here.
+        if (can_checkpoint && done > 0) {
+          stop.grant(deadline);
+          write_checkpoint();
+        }
         break;
       }
       std::vector<protocol::Array> to_continuum;
@@ -559,10 +630,12 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
           {"interface_force_on_continuum_z", on_continuum[2]},
       };
       recorder.record(fixed, monitors);
-      ++done;
+      ++done;  // loop.exchanges_done
       const bool snapshot_due = scenario.run.snapshot_every > 0 && (exchange + 1) % scenario.run.snapshot_every == 0 &&
                                 exchange + 1 < scenario.run.exchanges;
       if (snapshot_due) write_snapshots(*writer, participants, time, deadline);
+      if (scenario.run.checkpoint_every > 0 && (exchange + 1) % scenario.run.checkpoint_every == 0 && exchange + 1 < scenario.run.exchanges)
+        write_checkpoint();
       // Flush at most about once a second: the file stays readable by others
       // during long runs without an HDF5 flush per exchange. Failures close the
       // writer, which writes every buffered row.
@@ -582,6 +655,11 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
         equilibrium_reached = true;
         break;
       }
+      if (scenario.run.stop_monitor && done >= scenario.run.stop_min_exchanges &&
+          monitor_reached(monitors, *scenario.run.stop_monitor, scenario.run.stop_monitor_at_least)) {
+        monitor_stop_reached = true;
+        break;
+      }
     }
     progress.finish();
     // Step 6: final snapshot and summary.
@@ -598,6 +676,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
                               {"force_balance_unchecked_exchanges", unchecked_balances},
                               {"stopped_by_signal", status == 130}};
     if (scenario.run.stop_unbalanced_force_ratio) summary["equilibrium_reached"] = equilibrium_reached;
+    if (scenario.run.stop_monitor) summary["stop_monitor_reached"] = monitor_stop_reached;
     writer->set_attribute("summary", summary.dump());
     writer->close();
     stop_all();
@@ -612,6 +691,9 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     if (scenario.run.stop_unbalanced_force_ratio)
       text << (equilibrium_reached ? " Equilibrium reached: every unbalanced_force_ratio <= " : " Equilibrium NOT reached within run.exchanges: some unbalanced_force_ratio > ")
            << *scenario.run.stop_unbalanced_force_ratio << " (run.stop_when).";
+    if (scenario.run.stop_monitor)
+      text << (monitor_stop_reached ? " Stopped when " : " Did NOT reach ") << *scenario.run.stop_monitor << " >= "
+           << scenario.run.stop_monitor_at_least << " (run.stop_when).";
     if (std::isfinite(peak_pile_force))
       text << " Pile penetration " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, final pile force "
            << scalar_monitor(monitors["dem"], "pile_force_n") << " N (peak " << peak_pile_force << " N).";

@@ -3,6 +3,7 @@
 // XDMF results. See README.md and protocol/SPEC.md.
 //
 //   coupler run SCENARIO.json [--out DIR] [--no-progress]
+//   coupler run --resume DIR [--no-progress]
 //   coupler check SCENARIO.json
 #include <unistd.h>
 
@@ -33,6 +34,10 @@ void print_help() {
                "  coupler run SCENARIO.json [--out DIR] [--no-progress]\n"
                "      Start the servers the scenario names, run it, write DIR/results.h5 (+ .xdmf)\n"
                "      (DIR defaults to the scenario's output.directory, else results/<name>).\n"
+               "  coupler run --resume DIR [SCENARIO.json] [--no-progress]\n"
+               "      Continue the run in DIR from its last checkpoint (run.checkpoint_every, or the one\n"
+               "      a Ctrl-C writes) into the same results file; the scenario is DIR/scenario.json\n"
+               "      (a SCENARIO.json given must equal it). See docs/checkpoints.md.\n"
                "  coupler check SCENARIO.json\n"
                "      Validate the scenario: the top level here, each participant's section by\n"
                "      starting its server and configuring it. Runs no step.\n"
@@ -45,7 +50,8 @@ void print_help() {
                "  name, description, gravity {g_m_s2, g_level, direction},\n"
                "  participants {dem, continuum}: each {program | endpoint, args, config},\n"
                "  coupling {exchange_interval, continuum_steps_per_exchange, dt_s, force_balance_tolerance, scheme},\n"
-               "  run {exchanges, deadline_s, startup_timeout_s, snapshot_every}, output {directory},\n"
+               "  run {exchanges, deadline_s, startup_timeout_s, snapshot_every, checkpoint_every, stop_when},\n"
+               "  output {directory},\n"
                "  variants [{label, patch}] (optional: one run per entry, the scenario with `patch` applied as a\n"
                "  JSON Merge Patch, named <name>_<label>, results in <output.directory>/<label>).\n"
                "See README.md (Scenarios) and scenarios/*.json.\n";
@@ -80,6 +86,11 @@ int run_command(int argc, char** argv) {
     if (arg == "--out") {
       if (i + 1 >= argc || argv[i + 1][0] == '\0') throw dfc::UserError("--out needs a folder for the results");
       options.output_directory = argv[++i];
+    } else if (arg == "--resume") {
+      if (command != "run") throw dfc::UserError("--resume belongs to 'coupler run' (coupler run --resume DIR)");
+      if (i + 1 >= argc || argv[i + 1][0] == '\0') throw dfc::UserError("--resume needs the folder of the run to continue");
+      options.output_directory = argv[++i];
+      options.resume = true;
     } else if (arg == "--no-progress") {
       options.progress = false;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -90,13 +101,17 @@ int run_command(int argc, char** argv) {
       throw dfc::UserError("more than one scenario given ('" + scenario_path.string() + "' and '" + std::string(arg) + "')");
     }
   }
+  if (options.resume && scenario_path.empty()) scenario_path = options.output_directory / "scenario.json";
   if (scenario_path.empty()) throw dfc::UserError("no scenario file given (coupler " + std::string(command) + " SCENARIO.json)");
-  if (command == "run" && options.output_directory != fs::path())
+  // A resumed run writes into its own folder, where its scenario copy is: that is no clash.
+  if (command == "run" && options.output_directory != fs::path() && !options.resume)
     if (const auto problem = dfc::coupler::output_directory_problem(options.output_directory, scenario_path))
       throw dfc::UserError("--out " + *problem);
 
   const auto scenarios = dfc::coupler::load_scenarios(scenario_path, own_bin_dir());
   const bool variants = !scenarios.front().variant_label.empty();
+  if (options.resume && variants)
+    throw dfc::UserError("--resume continues one run; '" + scenario_path.string() + "' has variants: resume each variant's folder (DIR/<label>)");
   if (command == "check") {
     for (const auto& scenario : scenarios) {
       std::cout << "Checking " << scenario_path.string() << (variants ? " (" + scenario.name + ")" : std::string()) << " ...\n";

@@ -9,7 +9,7 @@ void StopRequest::check(const std::string& pending) {
   if (!requested()) return;
   const auto now = std::chrono::steady_clock::now();
   if (!first_seen_) first_seen_ = now;
-  if (now - *first_seen_ > kGrace)
+  if (now - *first_seen_ > kGrace + granted_)
     throw RunInterrupted("stopped by a signal (Ctrl-C) during " + pending + ", which did not end within " + std::to_string(kGrace.count()) +
                          " ms of it");
 }
@@ -107,6 +107,11 @@ void Participant::stop() noexcept {
   // After Ctrl-C the user is waiting: a server that does not exit at once is killed.
   const auto grace = std::chrono::milliseconds(stop_->requested() ? 200 : 1000);
   if (process_ && !process_->wait_exit(grace)) process_->kill();
+}
+
+void StopRequest::grant(std::chrono::milliseconds extra) {
+  first_seen_ = std::chrono::steady_clock::now();
+  granted_ = extra;
 }
 
 }  // namespace dfc::coupler

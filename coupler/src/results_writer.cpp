@@ -267,9 +267,86 @@ void ResultsWriter::write_snapshot(const std::string& role, std::int64_t step, d
     entry.arrays.push_back({array.name, array.dtype, array.shape});
   }
   if (const std::optional<std::int64_t> points = polyvertex_point_count(entry)) s.ensure_polyvertex_connectivity(*points);
+  if (const std::optional<std::int64_t> bonds = bond_point_count(entry)) s.ensure_polyvertex_connectivity(*bonds);
   ++index;
   s.catalogue.push_back(std::move(entry));
   s.sidecar_stale = true;
+}
+
+nlohmann::json ResultsWriter::resume_point() {
+  flush();
+  const State& s = *state_;
+  nlohmann::json columns = nlohmann::json::array();
+  for (std::size_t c = 0; c < s.columns.size(); ++c) columns.push_back({{"name", s.columns[c]}, {"width", s.widths[c]}});
+  nlohmann::json catalogue = nlohmann::json::array();
+  for (const XdmfSnapshot& entry : s.catalogue) {
+    nlohmann::json arrays = nlohmann::json::array();
+    for (const XdmfArrayInfo& a : entry.arrays) arrays.push_back({{"name", a.name}, {"dtype", protocol::dtype_name(a.dtype)}, {"shape", a.shape}});
+    catalogue.push_back({{"role", entry.role}, {"group", entry.group_path}, {"step", entry.step}, {"time", entry.time}, {"kind", entry.kind},
+                         {"arrays", arrays}});
+  }
+  return {{"rows", s.rows},
+          {"declared", s.declared},
+          {"columns", columns},
+          {"snapshots", s.snapshot_count},
+          {"catalogue", catalogue},
+          {"polyvertex_counts", s.polyvertex_counts}};
+}
+
+ResultsWriter ResultsWriter::reopen(std::filesystem::path path, const nlohmann::json& resume_point) {
+  ResultsWriter writer;
+  h5::File file = h5::File::open_read_write(path);
+  writer.state_ = std::make_unique<State>(std::move(path), std::move(file));
+  State& s = *writer.state_;
+  try {
+    const h5::Group root = s.file.root();
+    for (const char* attribute : {"summary", "failure", "interrupted"}) h5::remove_attribute(root.id(), attribute);
+    s.rows = resume_point.at("rows").get<std::int64_t>();
+    s.declared = resume_point.at("declared").get<bool>();
+    if (s.declared) {
+      const h5::Group series = root.open_group("timeseries");
+      for (const auto& column : resume_point.at("columns")) {
+        s.columns.push_back(column.at("name").get<std::string>());
+        s.widths.push_back(column.at("width").get<std::size_t>());
+        s.row_width += s.widths.back();
+        s.column_datasets.push_back(series.open_dataset(s.columns.back()));
+        s.column_datasets.back().truncate_rows(s.rows);  // rows after the checkpoint go
+      }
+      s.pending.assign(s.columns.size(), {});
+    }
+    s.snapshot_count = resume_point.at("snapshots").get<std::map<std::string, std::int64_t>>();
+    const h5::Group snapshots = root.open_group("snapshots");
+    for (const std::string& role : snapshots.members()) {
+      const h5::Group group = snapshots.open_group(role);
+      const auto kept = s.snapshot_count.find(role);
+      for (const std::string& name : group.members())  // snapshots after the checkpoint go
+        if (kept == s.snapshot_count.end() || std::stoll(name) >= kept->second) group.remove(name);
+    }
+    for (const auto& entry : resume_point.at("catalogue")) {
+      XdmfSnapshot snapshot{entry.at("role").get<std::string>(), entry.at("group").get<std::string>(), entry.at("step").get<std::int64_t>(),
+                            entry.at("time").get<double>(), entry.at("kind").get<std::string>(), {}};
+      for (const auto& a : entry.at("arrays")) {
+        const auto dtype = protocol::dtype_from_name(a.at("dtype").get<std::string>());
+        if (!dtype) throw std::invalid_argument("unknown dtype " + a.at("dtype").dump());
+        snapshot.arrays.push_back({a.at("name").get<std::string>(), *dtype, a.at("shape").get<std::vector<std::int64_t>>()});
+      }
+      s.catalogue.push_back(std::move(snapshot));
+    }
+    s.polyvertex_counts = resume_point.at("polyvertex_counts").get<std::set<std::int64_t>>();
+    std::set<std::string> kept_connectivity;
+    for (const std::int64_t points : s.polyvertex_counts) kept_connectivity.insert(polyvertex_connectivity_path(points));
+    if (root.has("xdmf"))  // connectivity first stored after the checkpoint goes, so it can be written again
+      for (const std::string& name : root.open_group("xdmf").members())
+        if (!kept_connectivity.contains("/xdmf/" + name)) root.open_group("xdmf").remove(name);
+    s.sidecar_stale = true;
+    writer.flush();
+  } catch (const UserError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw UserError("cannot continue results file '" + s.path.string() + "' from its checkpoint: " + e.what() +
+                    "; the file may have been damaged when the run was killed: start the run again, or resume into a copy of the file");
+  }
+  return writer;
 }
 
 void ResultsWriter::set_attribute(const std::string& name, const std::string& json_text) {

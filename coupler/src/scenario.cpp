@@ -12,6 +12,7 @@
 #include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
+#include "dfc/coupler/scenario_includes.hpp"
 #include "dfc/coupler/scenario_variants.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/transport.hpp"
@@ -137,13 +138,15 @@ std::optional<std::string> output_directory_problem(const fs::path& directory, c
 }
 
 std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_dir) {
-  nlohmann::json document;
-  try {
-    document = parse_json_text(read_scenario_text(path), JsonTextLimits{.reject_duplicate_keys = true});
-  } catch (const JsonTextError& e) {
-    if (e.kind() == JsonTextError::Kind::syntax) throw UserError("scenario '" + path.string() + "' is not valid JSON: " + e.what());
-    throw ConfigError(e.key_path(), e.reason());
-  }
+  const auto load = [](const fs::path& file) {
+    try {
+      return parse_json_text(read_scenario_text(file), JsonTextLimits{.reject_duplicate_keys = true});
+    } catch (const JsonTextError& e) {
+      if (e.kind() == JsonTextError::Kind::syntax) throw UserError("scenario '" + file.string() + "' is not valid JSON: " + e.what());
+      throw ConfigError(e.key_path(), e.reason());
+    }
+  };
+  const nlohmann::json document = resolve_includes(load(path), path.has_parent_path() ? path.parent_path() : fs::path("."), load);
   std::vector<Scenario> scenarios;
   for (const ScenarioVariant& variant : expand_variants(document)) {
     try {
@@ -209,9 +212,24 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   scenario.run.deadline_s = run.number("deadline_s", 60.0, wait);
   scenario.run.startup_timeout_s = run.number("startup_timeout_s", 20.0, wait);
   scenario.run.snapshot_every = run.integer("snapshot_every", 0, 0);
+  scenario.run.checkpoint_every = run.integer("checkpoint_every", 0, 0);
   if (auto stop = run.optional_child("stop_when")) {
-    scenario.run.stop_unbalanced_force_ratio = stop->number("unbalanced_force_ratio", Bounds{0.0, 1.0, true});
-    if (!(*scenario.run.stop_unbalanced_force_ratio > 0.0)) stop->fail("unbalanced_force_ratio", "expected a ratio in (0, 1), e.g. 1e-3");
+    if (stop->has("unbalanced_force_ratio")) {
+      scenario.run.stop_unbalanced_force_ratio = stop->number("unbalanced_force_ratio", Bounds{0.0, 1.0, true});
+      if (!(*scenario.run.stop_unbalanced_force_ratio > 0.0)) stop->fail("unbalanced_force_ratio", "expected a ratio in (0, 1), e.g. 1e-3");
+    } else {
+      stop->accept("unbalanced_force_ratio");
+    }
+    if (stop->has("monitor")) {
+      scenario.run.stop_monitor = stop->string("monitor");
+      if (!scenario.run.stop_monitor->starts_with("dem_") && !scenario.run.stop_monitor->starts_with("continuum_"))
+        stop->fail("monitor", "expected a time-series column \"<slot>_<monitor>\" of a number monitor, e.g. \"dem_pile_displacement_m\"");
+      scenario.run.stop_monitor_at_least = stop->number("at_least");
+    } else {
+      if (stop->has("at_least")) stop->fail("at_least", "\"at_least\" is the threshold of \"monitor\"; name the monitor too");
+    }
+    if (!scenario.run.stop_unbalanced_force_ratio && !scenario.run.stop_monitor)
+      stop->fail("unbalanced_force_ratio", "stop_when needs \"unbalanced_force_ratio\" (equilibrium) or \"monitor\" with \"at_least\", or both");
     scenario.run.stop_min_exchanges = stop->integer("min_exchanges", 1, 1);
     stop->finish();
   }

@@ -99,6 +99,16 @@ std::optional<Layout> layout_of(const XdmfSnapshot& snapshot) {
   return layout;
 }
 
+// Bond midpoints of a particle snapshot (bond_position [m, 3] with bond_state [m]):
+// m, or nothing when the snapshot has no bonds to draw.
+std::optional<std::int64_t> bond_count(const XdmfSnapshot& snapshot) {
+  if (snapshot.kind != "particles") return std::nullopt;
+  const std::optional<std::int64_t> points = point_count(find(snapshot, "bond_position"));
+  const XdmfArrayInfo* state = find(snapshot, "bond_state");
+  if (!points || state == nullptr || state->shape.size() != 1 || state->shape[0] != *points) return std::nullopt;
+  return points;
+}
+
 // XDMF AttributeType from the per-entity component count; nothing for shapes ParaView cannot label.
 std::optional<const char*> attribute_type(const XdmfArrayInfo& array) {
   if (array.shape.size() == 1) return "Scalar";
@@ -129,6 +139,25 @@ class GridWriter {
     out_ << "        <Attribute Name=\"" << escape(array.name) << "\" AttributeType=\"" << *type << "\" Center=\"" << center << "\">\n";
     data_item(snapshot, array, "          ");
     out_ << "        </Attribute>\n";
+  }
+
+  // The bonds of a particle snapshot as points at their midpoints, with their
+  // state (1 intact, 2 damaged, 3 broken in tension, 4 broken in shear).
+  void bond_grid(const XdmfSnapshot& snapshot) {
+    const std::optional<std::int64_t> bonds = bond_count(snapshot);
+    if (!bonds) return;
+    const std::string index = snapshot.group_path.substr(snapshot.group_path.find_last_of('/') + 1);
+    out_ << "      <Grid Name=\"" << escape(snapshot.role + "_bonds_" + index) << "\" GridType=\"Uniform\">\n";
+    out_ << "        <Time Value=\"" << number_text(snapshot.time) << "\"/>\n";
+    out_ << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << *bonds << "\" NodesPerElement=\"1\">\n";
+    out_ << "          <DataItem Dimensions=\"" << *bonds << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << escape(h5_file_name_)
+         << ':' << polyvertex_connectivity_path(*bonds) << "</DataItem>\n";
+    out_ << "        </Topology>\n";
+    out_ << "        <Geometry GeometryType=\"XYZ\">\n";
+    data_item(snapshot, *find(snapshot, "bond_position"), "          ");
+    out_ << "        </Geometry>\n";
+    attribute(snapshot, *find(snapshot, "bond_state"), "Node");
+    out_ << "      </Grid>\n";
   }
 
   // One uniform grid for `snapshot`, or nothing when it has no usable geometry.
@@ -184,6 +213,8 @@ std::optional<std::int64_t> polyvertex_point_count(const XdmfSnapshot& snapshot)
   return layout->points;
 }
 
+std::optional<std::int64_t> bond_point_count(const XdmfSnapshot& snapshot) { return bond_count(snapshot); }
+
 std::string polyvertex_connectivity_path(std::int64_t points) { return "/xdmf/polyvertex_" + std::to_string(points); }
 
 std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots) {
@@ -205,9 +236,19 @@ std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfS
     for (const XdmfSnapshot& snapshot : snapshots) {
       if (snapshot.role == role) writer.grid(snapshot);
     }
-    if (grids.str().empty()) continue;  // an empty temporal collection makes readers fail
-    out << "    <Grid Name=\"" << escape(role) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    out << grids.str();
+    if (!grids.str().empty()) {  // an empty temporal collection makes readers fail
+      out << "    <Grid Name=\"" << escape(role) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+      out << grids.str();
+      out << "    </Grid>\n";
+    }
+    std::ostringstream bond_grids;
+    GridWriter bond_writer(bond_grids, h5_file_name);
+    for (const XdmfSnapshot& snapshot : snapshots) {
+      if (snapshot.role == role) bond_writer.bond_grid(snapshot);
+    }
+    if (bond_grids.str().empty()) continue;
+    out << "    <Grid Name=\"" << escape(role + "_bonds") << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    out << bond_grids.str();
     out << "    </Grid>\n";
   }
   out << "  </Domain>\n";

@@ -7,6 +7,7 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/dem/cell_stress.hpp"
+#include "dfc/dem/foundation_loading.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
 #include "dfc/dem/region_config.hpp"
@@ -66,7 +67,8 @@ void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, std::vec
 }  // namespace
 
 protocol::SolverIdentity DemBackend::identity() const {
-  return {"dem_server", std::string(project_version()), "dem", {protocol::capability::accepts_interface, protocol::capability::snapshot}};
+  return {"dem_server", std::string(project_version()), "dem",
+          {protocol::capability::accepts_interface, protocol::capability::snapshot, protocol::capability::checkpoint}};
 }
 
 nlohmann::json DemBackend::configure(const nlohmann::json& section) {
@@ -77,7 +79,14 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   interface_wall_.reset();
   generation_removed_by_interface_ = 0;
   averages_ = nlohmann::json::object();
-  if (model_.pile_wall) pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
+  pile_tip_.clear();
+  pile_waiting_ = false;
+  if (model_.pile_wall) {
+    pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
+    pile_tip_ = pile_tip_facets(sim().walls()[*model_.pile_wall], pile_direction());
+    pile_waiting_ = config_.pile->start_when.has_value();
+    pile_start_step_ = config_.pile->start_step;
+  }
   ucs_axis_.reset();
   if (config_.ucs) {  // build_model adds the configured walls first, in order: same indices
     const auto& walls = sim().walls();
@@ -115,6 +124,14 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
                           {"scaled_bonds", gen->scaling.scaled_bonds},
                           {"lambda_min", gen->scaling.lambda_min},
                           {"lambda_max", gen->scaling.lambda_max}};
+    if (const auto& pcrm = config_.particles.pcrm; pcrm && !pcrm->zones.empty()) {
+      nlohmann::json zones = nlohmann::json::array();
+      for (std::size_t k = 0; k < pcrm->zones.size(); ++k)
+        zones.push_back({{"material", k}, {"scale_factor", pcrm->zones[k].scale_factor}, {"particles", gen->zone_spheres[k]}});
+      info["generation"]["zones"] = zones;
+      info["generation"]["seam_removed"] = gen->seam_removed;
+      info["generation"]["seam_seated"] = gen->seam_seated;
+    }
   }
   if (const auto& prep = model_.preparation) {
     nlohmann::json p = {{"consolidated", prep->consolidated},
@@ -148,6 +165,8 @@ nlohmann::json DemBackend::monitor_units() const {
     units[stress] = pascal;
   units["total_weight_n"] = newton;
   units["pile_force_n"] = newton;
+  units["pile_tip_force_n"] = newton;
+  units["pile_shaft_force_n"] = newton;
   units["pile_displacement_m"] = metre;
   units["dt_critical_s"] = second;
   for (const Wall& wall : simulation().walls()) {
@@ -249,10 +268,14 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   const auto& walls = s.walls();
   std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
-  Vec3 reaction_sum;
+  Vec3 reaction_sum, pile_tip_sum;
   Vec3 cell_stress_sum;
   double axial_sum = 0.0, lateral_sum = 0.0;
+  const bool ramping = model_.pile_wall && !pile_waiting_ && s.step_count() + request.n_steps > pile_start_step_ &&
+                       s.step_count() < pile_start_step_ + config_.pile->ramp_steps;
   for (std::int64_t step = 0; step < request.n_steps; ++step) {
+    if (ramping && s.step_count() >= pile_start_step_)
+      s.set_wall_velocity(*model_.pile_wall, ramped_velocity(config_.pile->velocity, s.step_count() - pile_start_step_, config_.pile->ramp_steps));
     if (cell_servo_) {
       cell_stress_sum += servo_step(s, *cell_servo_, request.dt).diagonal();
     } else if (triaxial_) {
@@ -272,6 +295,13 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
       for (std::size_t v = 0; v < node_force_sum.size(); ++v) node_force_sum[v] += wall.vertex_force[v];
       reaction_sum += wall.force_on_particles;
     }
+    if (model_.pile_wall) pile_tip_sum += facets_force(walls[*model_.pile_wall], pile_tip_);
+  }
+  if (pile_waiting_ && pile_may_start(*config_.pile->start_when, s.step_count(), config_.pile->start_step, measure(s).unbalanced_force_ratio)) {
+    pile_start_step_ = s.step_count();
+    s.set_wall_velocity(*model_.pile_wall, ramped_velocity(config_.pile->velocity, 0, config_.pile->ramp_steps));
+    pile_waiting_ = false;
+    std::cerr << "dem_server: pile starts at step " << s.step_count() << " (pile.start_when met)" << std::endl;
   }
   const double inv_n = 1.0 / double(request.n_steps);
 
@@ -296,7 +326,13 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["lateral_stress_pa"] = inv_n * lateral_sum;
     averages_["deviatoric_stress_pa"] = inv_n * (axial_sum - lateral_sum);
   }
-  if (model_.pile_wall) averages_["pile_force_n"] = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
+  if (model_.pile_wall) {
+    const double total = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
+    const double tip = -dot(inv_n * pile_tip_sum, pile_direction());
+    averages_["pile_force_n"] = total;
+    averages_["pile_tip_force_n"] = tip;
+    averages_["pile_shaft_force_n"] = total - tip;
+  }
   if (interface_wall_) {
     double power = 0.0;
     for (std::size_t v = 0; v < node_force_sum.size(); ++v) {
@@ -380,7 +416,8 @@ nlohmann::json DemBackend::monitors() {
   }
   if (model_.pile_wall) {
     out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());
-    if (!out.contains("pile_force_n")) out["pile_force_n"] = 0.0;
+    for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
+      if (!out.contains(force)) out[force] = 0.0;
   }
   return out;
 }
@@ -401,6 +438,10 @@ std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
   stress.reserve(std::size_t(6 * n));
   for (const Stress6& v : particle_stress(s)) stress.insert(stress.end(), v.begin(), v.end());
   arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {n, 6}, stress));
+  if (s.materials().count() > 1) {  // graded bodies only: the zone (material) of each particle
+    const std::vector<std::int64_t> material(p.material.begin(), p.material.end());
+    arrays.push_back(protocol::Array::from_i64("particle_material", {n}, material));
+  }
   if (s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
   if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, arrays);
   if (!s.walls().empty()) {

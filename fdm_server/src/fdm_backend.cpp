@@ -39,7 +39,8 @@ nlohmann::json to_json(const Vec3& v) { return nlohmann::json::array({v.x(), v.y
 
 protocol::SolverIdentity FdmBackend::identity() const {
   return {"fdm_server", std::string(project_version()), "continuum",
-          {protocol::capability::provides_interface, protocol::capability::accepts_interface, protocol::capability::snapshot}};
+          {protocol::capability::provides_interface, protocol::capability::accepts_interface, protocol::capability::snapshot,
+           protocol::capability::checkpoint}};
 }
 
 nlohmann::json FdmBackend::configure(const nlohmann::json& section) {
@@ -64,6 +65,7 @@ nlohmann::json FdmBackend::configure(const nlohmann::json& section) {
   if (coupling.role == CouplingRole::provider) info["capabilities"].push_back(protocol::capability::provides_interface);
   if (coupling.role == CouplingRole::driven) info["capabilities"].push_back(protocol::capability::accepts_interface);
   info["capabilities"].push_back(protocol::capability::snapshot);
+  info["capabilities"].push_back(protocol::capability::checkpoint);
   // Its monitors are exactly the ones SPEC.md §6.3 defines for every server.
   info[protocol::monitor_units_key] = protocol::shared_monitor_units();
   return info;

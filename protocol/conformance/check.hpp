@@ -50,7 +50,9 @@ inline void expect(bool condition, const std::string& why) {
 [[nodiscard]] std::vector<Check> malformed_message_checks();
 [[nodiscard]] std::vector<Check> configure_checks();
 [[nodiscard]] std::vector<Check> interface_checks();
+[[nodiscard]] std::vector<Check> checkpoint_checks_configured();
 [[nodiscard]] std::vector<Check> advance_checks();
+[[nodiscard]] std::vector<Check> checkpoint_checks_running();
 [[nodiscard]] std::vector<Check> shutdown_checks();
 
 }  // namespace dfc::conformance

@@ -54,6 +54,7 @@ void narrow_capabilities(Context& context, const nlohmann::json& info) {
   context.provides_interface = serves(protocol::capability::provides_interface);
   context.accepts_interface = serves(protocol::capability::accepts_interface);
   context.snapshot = serves(protocol::capability::snapshot);
+  context.checkpoint = serves(protocol::capability::checkpoint);
 }
 
 void configure_is_accepted_with_hash(Context& context) {

@@ -60,6 +60,7 @@ void hello_after_refusal_is_accepted(Context& context) {
   context.provides_interface = has_capability(capabilities, protocol::capability::provides_interface);
   context.accepts_interface = has_capability(capabilities, protocol::capability::accepts_interface);
   context.snapshot = has_capability(capabilities, protocol::capability::snapshot);
+  context.checkpoint = has_capability(capabilities, protocol::capability::checkpoint);
   const auto limits = body.value("limits", nlohmann::json::object());
   const auto limit = [&](const char* key, std::size_t fallback) {
     const auto it = limits.find(key);

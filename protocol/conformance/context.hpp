@@ -59,6 +59,7 @@ class Context {
   bool provides_interface = false;       ///< capabilities from hello_ok
   bool accepts_interface = false;
   bool snapshot = false;
+  bool checkpoint = false;               ///< 1.3 (SPEC.md §4.7)
   double dt = 1e-6;                      ///< s; dt_suggested from configured
   std::int64_t step = 0;                 ///< the server's step as the checks know it
   nlohmann::json monitor_units;          ///< configured.info.monitor_units; null when the server declared none

@@ -159,6 +159,26 @@ Message SolverClient::snapshot(std::chrono::milliseconds deadline) {
   return connection_.request(std::move(request), deadline);
 }
 
+std::int64_t SolverClient::checkpoint(const std::string& path, std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::checkpoint;
+  request.body = {{"path", path}};
+  const Message reply = connection_.request(std::move(request), deadline);
+  if (reply.type != type::checkpointed || !reply.step)
+    throw RemoteError("BAD_MESSAGE", connection_.label() + " answered checkpoint with '" + reply.type + "' and no step", "");
+  return *reply.step;
+}
+
+std::int64_t SolverClient::restore(const std::string& path, std::chrono::milliseconds deadline) {
+  Message request;
+  request.type = type::restore;
+  request.body = {{"path", path}};
+  const Message reply = connection_.request(std::move(request), deadline);
+  if (reply.type != type::restored || !reply.step)
+    throw RemoteError("BAD_MESSAGE", connection_.label() + " answered restore with '" + reply.type + "' and no step", "");
+  return *reply.step;
+}
+
 void SolverClient::shutdown(std::chrono::milliseconds deadline) {
   Message request;
   request.type = type::shutdown;

@@ -6,7 +6,7 @@
 namespace dfc::protocol {
 
 namespace {
-constexpr std::array<std::pair<ErrorCode, std::string_view>, 11> kNames{{
+constexpr std::array<std::pair<ErrorCode, std::string_view>, 12> kNames{{
     {ErrorCode::bad_message, "BAD_MESSAGE"},
     {ErrorCode::unknown_type, "UNKNOWN_TYPE"},
     {ErrorCode::version_mismatch, "VERSION_MISMATCH"},
@@ -17,6 +17,7 @@ constexpr std::array<std::pair<ErrorCode, std::string_view>, 11> kNames{{
     {ErrorCode::bad_config, "BAD_CONFIG"},
     {ErrorCode::unsupported, "UNSUPPORTED"},
     {ErrorCode::solver_failure, "SOLVER_FAILURE"},
+    {ErrorCode::bad_checkpoint, "BAD_CHECKPOINT"},
     {ErrorCode::internal, "INTERNAL"},
 }};
 }  // namespace

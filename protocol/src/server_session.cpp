@@ -1,10 +1,13 @@
 #include "dfc/protocol/server_session.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
+#include "dfc/common/state_archive.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/protocol/checkpoint_file.hpp"
 
 namespace dfc::protocol {
 
@@ -101,6 +104,8 @@ Message ServerSession::dispatch(const Message& request) {
   if (t == type::advance) return on_advance(request);
   if (t == type::query) return on_query(request);
   if (t == type::snapshot) return on_snapshot(request);
+  if (t == type::checkpoint) return on_checkpoint(request);
+  if (t == type::restore) return on_restore(request);
   if (t == type::ping) return reply_to(request, type::pong);
   if (t == type::shutdown) {
     state_ = SessionState::closed;
@@ -142,7 +147,8 @@ Message ServerSession::on_configure(const Message& request) {
   if (!section.is_object()) throw ProtocolError(ErrorCode::bad_config, "body.section_json is not a JSON object");
   nlohmann::json info = backend_.configure(section);
   Message reply = reply_to(request, type::configured);
-  reply.body = {{"scenario_hash", fnv1a64_hex(section_text)}, {"info", std::move(info)}};
+  section_hash_ = fnv1a64_hex(section_text);
+  reply.body = {{"scenario_hash", section_hash_}, {"info", std::move(info)}};
   state_ = SessionState::configured;
   return reply;
 }
@@ -204,6 +210,53 @@ Message ServerSession::on_snapshot(const Message& request) {
   reply.arrays = backend_.snapshot(kind);
   reply.step = step_;
   reply.body = {{"kind", kind}};
+  return reply;
+}
+
+std::string ServerSession::checkpoint_path(const Message& request) const {
+  const auto& capabilities = backend_.identity().capabilities;
+  if (std::find(capabilities.begin(), capabilities.end(), capability::checkpoint) == capabilities.end())
+    throw ProtocolError(ErrorCode::unsupported, "'" + request.type + "' needs capability 'checkpoint', which this server lacks");
+  const auto path = request.body.find("path");
+  if (path == request.body.end() || !path->is_string() || path->get_ref<const std::string&>().empty())
+    throw ProtocolError(ErrorCode::bad_message, "'" + request.type + "' needs body.path: the checkpoint file's path, a non-empty string");
+  return path->get<std::string>();
+}
+
+Message ServerSession::on_checkpoint(const Message& request) {
+  require_state(request, {SessionState::configured, SessionState::running});
+  const std::string path = checkpoint_path(request);
+  const SolverIdentity id = backend_.identity();
+  const std::string state = backend_.checkpoint_state();
+  write_checkpoint_file(path, {id.name, id.version, section_hash_, step_}, state);
+  Message reply = reply_to(request, type::checkpointed);
+  reply.step = step_;
+  reply.body = {{"path", path}, {"state_bytes", state.size()}};
+  return reply;
+}
+
+Message ServerSession::on_restore(const Message& request) {
+  // Only before the first advance: the section (and interface) the state belongs to are set, nothing has run.
+  require_state(request, {SessionState::configured});
+  const std::string path = checkpoint_path(request);
+  const SolverIdentity id = backend_.identity();
+  const CheckpointFile file = read_checkpoint_file(path);
+  if (const std::string why = checkpoint_mismatch(file.header, {id.name, id.version, section_hash_, step_}); !why.empty())
+    throw ProtocolError(ErrorCode::bad_checkpoint, "checkpoint file '" + path + "' cannot be restored: " + why);
+  try {
+    backend_.restore_state(file.state);
+  } catch (const StateFormatError& e) {
+    // The backend may have replaced part of its state: nothing but a fresh server can be trusted now.
+    state_ = SessionState::failed;
+    throw ProtocolError(ErrorCode::bad_checkpoint, std::string(e.what()) + "; the server's state is now undefined: restart it");
+  } catch (const ProtocolError& e) {
+    state_ = SessionState::failed;
+    throw ProtocolError(e.code(), std::string(e.what()) + "; the server's state is now undefined: restart it", e.key());
+  }
+  step_ = file.header.step;
+  state_ = SessionState::running;
+  Message reply = reply_to(request, type::restored);
+  reply.step = step_;
   return reply;
 }
 

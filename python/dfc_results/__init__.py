@@ -13,7 +13,7 @@
     for label, run in runs.items():
         print(label, run.series("dem_axial_stress_pa").values.max())
 
-Layout of the file (see docs/results.md):
+Layout of the file (see docs/outputs.md):
 
     /                         attributes: format, created_utc, scenario (JSON text), versions (JSON),
                               summary (JSON, at the end of a run), failure (JSON, only when it failed)

@@ -167,6 +167,27 @@ TEST(XdmfDocument, GridWithoutHexahedraIsShownAsPoints) {
   EXPECT_EQ(count(xml, "Hexahedron"), 0U);
 }
 
+TEST(XdmfDocument, BondsOfAParticleSnapshotAreASecondCollectionOfPointsWithTheirState) {
+  // Three bonds among four particles: the bonds' own collection, points at the
+  // midpoints (bond_position) labelled by bond_state, beside the particles.
+  XdmfSnapshot dem{"dem", "/snapshots/dem/000000", 0, 0.5, "particles",
+                   {{"particle_position", protocol::DType::f64, {4, 3}},
+                    {"bond_position", protocol::DType::f64, {3, 3}},
+                    {"bond_state", protocol::DType::i64, {3}}}};
+  const std::vector<XdmfSnapshot> snapshots = {dem};
+  const std::string xml = xdmf_document("r.h5", snapshots);
+  EXPECT_EQ(nesting_error(xml), "");
+  ASSERT_EQ(bond_point_count(dem), std::optional<std::int64_t>(3));
+  EXPECT_EQ(count(xml, "<Grid Name=\"dem_bonds\" GridType=\"Collection\" CollectionType=\"Temporal\">"), 1U);
+  EXPECT_EQ(count(xml, "TopologyType=\"Polyvertex\" NumberOfElements=\"3\""), 1U);
+  EXPECT_EQ(count(xml, "TopologyType=\"Polyvertex\" NumberOfElements=\"4\""), 1U);
+  EXPECT_EQ(count(xml, "r.h5:/snapshots/dem/000000/bond_position</DataItem>"), 1U);
+  EXPECT_EQ(count(xml, "<Attribute Name=\"bond_state\" AttributeType=\"Scalar\" Center=\"Node\">"), 1U);
+  // A bond_state that does not match the positions is not drawn.
+  dem.arrays.back().shape = {2};
+  EXPECT_EQ(bond_point_count(dem), std::nullopt);
+}
+
 TEST(XdmfDocument, UnwritableSidecarIsUserError) {
   const std::vector<XdmfSnapshot> none;
   EXPECT_THROW(write_xdmf("/nonexistent-dfc-dir/run.xdmf", "run.h5", none), UserError);

@@ -74,6 +74,21 @@ TEST(Scenario, ErrorsNameTheKeyPath) {
   EXPECT_EQ(error_key(d), "participants");
 }
 
+TEST(Scenario, StopWhenAMonitorReachesAValue) {
+  auto d = minimal();
+  d["run"]["stop_when"] = {{"monitor", "dem_pile_displacement_m"}, {"at_least", 0.012}};
+  const Scenario s = parse_scenario(d, "scenario.json", "");
+  EXPECT_EQ(s.run.stop_monitor, std::optional<std::string>("dem_pile_displacement_m"));
+  EXPECT_EQ(s.run.stop_monitor_at_least, 0.012);
+  EXPECT_FALSE(s.run.stop_unbalanced_force_ratio);
+  d["run"]["stop_when"] = {{"at_least", 0.012}};
+  EXPECT_EQ(error_key(d), "run.stop_when.at_least");
+  d["run"]["stop_when"] = {{"monitor", "pile_displacement_m"}, {"at_least", 0.012}};
+  EXPECT_EQ(error_key(d), "run.stop_when.monitor");  // a column is "<slot>_<monitor>"
+  d["run"]["stop_when"] = nlohmann::json::object();
+  EXPECT_EQ(error_key(d), "run.stop_when.unbalanced_force_ratio");
+}
+
 TEST(Scenario, UnknownKeySuggestsTheClosestKnownKey) {
   auto d = minimal();
   d["run"]["exchangs"] = 2;
@@ -174,6 +189,28 @@ class ScenarioFile : public ::testing::Test {
 
   std::filesystem::path folder_;
 };
+
+TEST_F(ScenarioFile, AnIncludedFileIsTheBaseTheIncludingObjectPatches) {
+  // A shared parameter set (scenario_includes.hpp): the included object, with
+  // the including object's own keys on top; nested includes resolve relative
+  // to the file that names them.
+  std::filesystem::create_directories(folder_ / "materials");
+  std::ofstream(folder_ / "materials" / "rock.json") << R"({"law": "soft_bond", "emod_pa": 2.8e9, "friction": 0.5, "include": "gap.json"})";
+  std::ofstream(folder_ / "materials" / "gap.json") << R"({"bond_gap_m": 6e-5, "friction": 0.3})";
+  auto document = minimal();
+  document["participants"]["continuum"]["config"] = {{"contact", {{"include", "materials/rock.json"}, {"friction", 0.7}}}};
+  const std::vector<Scenario> scenarios = load_scenarios(write(document.dump()), "");
+  ASSERT_EQ(scenarios.size(), 1u);
+  const nlohmann::json contact = scenarios[0].participants[0].config.at("contact");
+  EXPECT_EQ(contact, nlohmann::json::parse(R"({"law": "soft_bond", "emod_pa": 2.8e9, "friction": 0.7, "bond_gap_m": 6e-5})"));
+  EXPECT_EQ(scenarios[0].document["participants"]["continuum"]["config"]["contact"], contact);  // the results keep the expanded text
+  // A missing file and a file that includes itself name the "include" key.
+  document["participants"]["continuum"]["config"]["contact"]["include"] = "materials/none.json";
+  EXPECT_EQ(load_error(write(document.dump())), "participants.continuum.config.contact.include");
+  std::ofstream(folder_ / "loop.json") << R"({"include": "loop.json"})";
+  document["participants"]["continuum"]["config"]["contact"]["include"] = "loop.json";
+  EXPECT_EQ(load_error(write(document.dump())), "participants.continuum.config.contact.include");
+}
 
 TEST_F(ScenarioFile, DuplicateKeysAreRefusedNamingThem) {
   std::string text = minimal().dump();

@@ -67,7 +67,7 @@ TEST(BondedShearDashpot, LinearPbondsFrictionalPart) {
 
 TEST(BondedShearDashpot, SoftBondsUnbondedContact) {
   const auto forces = broken_bond_shear_force<SoftBondLaw>(
-      {{"law", "soft_bond"}, {"emod_pa", emod}, {"kratio", kratio}, {"sb_ten_pa", 1e6}, {"sb_coh_pa", 1e6}});
+      {{"law", "soft_bond"}, {"sb_emod_pa", emod}, {"kratio", kratio}, {"sb_ten_pa", 1e6}, {"sb_coh_pa", 1e6}});
   // docs/dem_bond_laws.md: the unbonded contact keeps the bond's stiffness
   // E*/(R1 + R2) [Pa/m] times the section pi (lambda R)^2, lambda = 1.
   expect_spring_then_dashpot(forces, emod / (2.0 * radius) * std::numbers::pi * radius * radius / kratio);

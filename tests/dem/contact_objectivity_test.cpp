@@ -123,7 +123,7 @@ TEST(ContactObjectivity, LinearPbondLoadsTurnWithARigidlyRotatingPair) {
 
 TEST(ContactObjectivity, SoftBondLoadsTurnWithARigidlyRotatingPair) {
   const auto [before, after] = loads_before_and_after_rigid_turn<SoftBondLaw>(
-      {{"law", "soft_bond"}, {"emod_pa", 1e8}, {"sb_ten_pa", 1e12}, {"sb_coh_pa", 1e12}}, n0, axis, steps);
+      {{"law", "soft_bond"}, {"sb_emod_pa", 1e8}, {"sb_ten_pa", 1e12}, {"sb_coh_pa", 1e12}}, n0, axis, steps);
   expect_turned(after.force, before.force, projection_tolerance, "force");
   expect_turned(after.couple, before.couple, projection_tolerance, "couple");
 }

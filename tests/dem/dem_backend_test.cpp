@@ -12,18 +12,7 @@ using protocol::Array;
 using protocol::ErrorCode;
 using protocol::ProtocolError;
 
-nlohmann::json bed_on_interface() {
-  return {
-      {"particles",
-       {{"generator", "lattice"},
-        {"region", {{"type", "cylinder"}, {"radius_m", 0.03}, {"z_min_m", 0.0}, {"z_max_m", 0.03}}},
-        {"radius_min_m", 0.003},
-        {"radius_max_m", 0.004},
-        {"density_kg_m3", 2650}}},
-      {"contact", {{"kn_n_m", 1e5}, {"ks_n_m", 1e5}}},
-      {"gravity_m_s2", {0, 0, -98.1}},
-  };
-}
+nlohmann::json bed_on_interface() { return test::cylinder_bed_under_gravity(); }
 
 /// The continuum's top face z = 0 as 2 x 2 quads split into 8 triangles.
 protocol::InterfaceMesh plate() {

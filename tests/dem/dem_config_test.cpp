@@ -106,7 +106,7 @@ TEST(DemConfig, UpscalingScalesRadiiAndFollowsEachLawsRule) {
   EXPECT_EQ(std::get<LinearLaw>(up.walls[1].contact.law).kn, 2.0 * std::get<LinearLaw>(base.walls[1].contact.law).kn);  // per-wall law too
 
   // soft_bond: moduli and strengths fixed, bonding gap x S.
-  c["contact"] = {{"law", "soft_bond"}, {"emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_ten_pa", 4.5e5}, {"sb_coh_pa", 4.5e5}, {"sb_fa_deg", 32},
+  c["contact"] = {{"law", "soft_bond"}, {"sb_emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_ten_pa", 4.5e5}, {"sb_coh_pa", 4.5e5}, {"sb_fa_deg", 32},
                   {"sb_soft", 100},     {"sb_cut", 0.05},   {"bond_gap_m", 6e-5}};
   const DemConfig soft = parse_dem_config(c);
   EXPECT_EQ(soft.contact.bond_gap(), 1.2e-4);

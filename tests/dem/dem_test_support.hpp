@@ -21,6 +21,22 @@ inline Simulation undamped(const ContactLawSetting& law, int threads = 1) {
   return Simulation(SimulationSettings{.particle_law = law, .gravity = {}, .local_damping = 0.0, .skin = 0.0, .threads = threads});
 }
 
+/// A lattice bed of spheres 3-4 mm in radius filling a cylinder 30 mm in
+/// radius and 30 mm high, under 10 g, no walls: it falls freely (dem_backend
+/// and foundation_loading tests add the walls they need).
+inline nlohmann::json cylinder_bed_under_gravity() {
+  return {
+      {"particles",
+       {{"generator", "lattice"},
+        {"region", {{"type", "cylinder"}, {"radius_m", 0.03}, {"z_min_m", 0.0}, {"z_max_m", 0.03}}},
+        {"radius_min_m", 0.003},
+        {"radius_max_m", 0.004},
+        {"density_kg_m3", 2650}}},
+      {"contact", {{"kn_n_m", 1e5}, {"ks_n_m", 1e5}}},
+      {"gravity_m_s2", {0, 0, -98.1}},
+  };
+}
+
 /// 75 spheres (r 4.5-5 mm, 3 layers) in a 60 x 60 mm box on a frictional
 /// floor with frictionless side walls: all the weight ends up on the floor.
 /// A normal dashpot helps local damping settle it: the linear law has no

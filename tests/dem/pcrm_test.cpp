@@ -1,6 +1,8 @@
 // Periodic cell replication (pcrm_replication.hpp) and stress scaling
 // (stress_scaling.hpp) on a small bonded REV of the chalk law of Ciantia et al. (2024).
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include <gtest/gtest.h>
 
@@ -8,6 +10,7 @@
 #include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/pcrm_replication.hpp"
+#include "dfc/dem/pcrm_zones.hpp"
 #include "dfc/dem/rev_preparation.hpp"
 #include "dfc/dem/stress_scaling.hpp"
 
@@ -143,13 +146,135 @@ TEST(StressScaling, ScalingADamageBondsHistoryScalesItsForceAndCouple) {
 
 TEST(StressScaling, ScalingASoftBondsHistoryScalesItsForceAndCouple) {
   // Zheng et al. (2023) Table 2 (docs/references.md).
-  expect_scaling_scales_the_load<SoftBondLaw>(make_contact_law({{"law", "soft_bond"}, {"emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_coh_pa", 4.5e5},
+  expect_scaling_scales_the_load<SoftBondLaw>(make_contact_law({{"law", "soft_bond"}, {"sb_emod_pa", 2.8e9}, {"kratio", 2.4}, {"sb_coh_pa", 4.5e5},
                                                                  {"sb_ten_pa", 4.5e5}, {"sb_fa_deg", 32}, {"sb_soft", 100}, {"sb_cut", 0.05}}));
 }
 
 TEST(StressScaling, LawsWithAnOverlapTermCannotBeScaled) {
   EXPECT_FALSE(test::linear(1e5, 5e4, 0.5, 0.2).intact_force_from_history());
   EXPECT_TRUE(chalk().intact_force_from_history());
+}
+
+}  // namespace
+}  // namespace dfc::dem
+
+namespace dfc::dem {
+namespace {
+
+/// A damage bond between two spheres of radius r, moved by `v` per step of 1 us
+/// for `steps` steps (v = 0: evaluated at rest).
+ContactForce moved_bond(const DamageBondLaw& law, std::vector<double>& h, double r, const Vec3& v, int steps) {
+  ContactKinematics k;
+  k.normal = {0.0, 0.0, 1.0};
+  k.radius_first = k.radius_second = r;
+  k.effective_mass = 1e-6;
+  k.dt = 1e-6;
+  k.relative_velocity = v;
+  ContactForce f{};
+  for (int s = 0; s < steps; ++s) f = law.evaluate(k, h.data());
+  return f;
+}
+
+TEST(PcrmZones, TheRevScaledToAnotherSIsTheSameStateAtAnotherSize) {
+  // A zone of S_k is filled with the REV (prepared at S_0) scaled by
+  // s = S_k / S_0 (pcrm_zones.hpp): lengths x s, each history column x s^e by
+  // its unit. With the law upscaled to S_k (u_cn, u_cs x s; moduli and
+  // strengths fixed) a damaged, yielding bond must then carry s^2 times the
+  // force and s^3 times the couple, at the same damage: the same stresses.
+  const double s0 = 2.1, s = 4.8 / 2.1, r = 0.116e-3 * s0 / 2.0;
+  const auto& law0 = std::get<DamageBondLaw>(upscale(chalk(), s0).law);
+  const auto& law1 = std::get<DamageBondLaw>(upscale(chalk(), s0 * s).law);
+  std::vector<double> h(DamageBondLaw::history_size, 0.0);
+  set_bond_state(h.data(), BondState::intact);
+  // Shear and a little opening at 1 cm/s until the bond has yielded and lost 5 % or more of its stiffness.
+  for (int block = 0; block < 200 && h[DamageBondLaw::damage] < 0.05; ++block) (void)moved_bond(law0, h, r, {1e-2, 0.0, 1e-3}, 50);
+  ASSERT_GT(h[DamageBondLaw::damage], 0.05);
+  ASSERT_EQ(bond_state(h.data()), BondState::damaged);
+  std::vector<double> before_row = h;
+  const ContactForce before = moved_bond(law0, before_row, r, {}, 1);
+
+  PreparedRev one;
+  one.stride = DamageBondLaw::history_size;
+  one.spheres = {{{0.0, 0.0, 0.0}, r}, {{0.0, 0.0, 2.0 * r}, r}};
+  one.pairs = {RevPair{0, 1, {0, 0, 0}}};
+  one.rows = h;
+  one.cell = {.lo = {}, .hi = {4.0 * r, 4.0 * r, 4.0 * r}, .periodic = {true, true, true}, .strain_rate = {}};
+  const PreparedRev scaled = scaled_rev(one, s, upscale(chalk(), s0).info->history);
+  EXPECT_DOUBLE_EQ(scaled.spheres[1].centre.z, 2.0 * r * s);
+  EXPECT_DOUBLE_EQ(scaled.cell.hi.x, 4.0 * r * s);
+  std::vector<double> after_row = scaled.rows;
+  const ContactForce after = moved_bond(law1, after_row, r * s, {}, 1);
+  // Tolerance: the law's products in another order of magnitude, 1e-12 relative.
+  EXPECT_LT(norm(after.on_first - s * s * before.on_first), 1e-12 * s * s * norm(before.on_first));
+  EXPECT_LT(norm(after.couple_on_first - s * s * s * before.couple_on_first), 1e-12 * s * s * s * norm(before.couple_on_first) + 1e-30);
+  EXPECT_NEAR(after_row[DamageBondLaw::damage], before_row[DamageBondLaw::damage], 1e-12);
+}
+
+TEST(PcrmZones, EachZoneIsFilledAtItsScaleAndTheSeamsOverlapLittle) {
+  // The REV (S = 10, 8 mm cell) fills x < 16 mm of a 48 x 16 x 16 mm box; the
+  // same REV at S = 20 fills the rest. The fine zone yields at the seam.
+  const PreparedRev& r = rev();
+  const BedRegion body_region{.shape = BedRegion::Shape::box, .min = {}, .max = {48e-3, 16e-3, 16e-3}};
+  const BedRegion fine_region{.shape = BedRegion::Shape::box, .min = {}, .max = {16e-3, 16e-3, 16e-3}};
+  const std::vector<PcrmZone> zones{{10.0, fine_region}, {20.0, std::nullopt}};
+  const double seam = 0.1;
+  const ZonedBody zoned = replicate_zones(r, chalk().info->history, body_region, zones, 0.0, seam);
+  const ReplicatedBody& b = zoned.body;
+  ASSERT_EQ(zoned.zone_spheres.size(), 2u);
+  EXPECT_EQ(zoned.zone_spheres[0] + zoned.zone_spheres[1], b.spheres.size());
+  EXPECT_GT(zoned.zone_spheres[0], 6 * r.spheres.size());   // 8 copies, less those cut by the box
+  EXPECT_GT(zoned.zone_spheres[1], r.spheres.size());       // 2 copies of 8x the volume, less the cut ones
+  double r_min = 1.0, r_max = 0.0;
+  for (const auto& s : r.spheres) r_min = std::min(r_min, s.radius), r_max = std::max(r_max, s.radius);
+  for (std::size_t i = 0; i < b.spheres.size(); ++i) {
+    const GeneratedSphere& s = b.spheres[i];
+    if (b.material[i] == 0) {
+      EXPECT_LE(s.centre.x, 16e-3 + s.radius);  // a fine sphere seated on the coarse zone moves by at most its radius
+      EXPECT_GE(s.radius, r_min);
+      EXPECT_LE(s.radius, r_max);
+    } else {
+      EXPECT_GT(s.centre.x, 16e-3);
+      EXPECT_GE(s.radius, 2.0 * r_min);
+      EXPECT_LE(s.radius, 2.0 * r_max);
+    }
+    EXPECT_GE(clearance(s, body_region), 0.0);  // whole spheres (protrusion 0)
+  }
+  // No sphere overlaps one of the other zone by more than the seam fraction,
+  // and the seated seam is a contact layer: coarse spheres touch fine ones
+  // (to round-off), instead of standing up to a fine sphere off them.
+  EXPECT_GT(zoned.seam_seated, 0u);
+  std::size_t seam_pairs = 0;
+  for (std::size_t i = 0; i < b.spheres.size(); ++i)
+    for (std::size_t j = 0; j < b.spheres.size(); ++j) {
+      if (b.material[i] != 0 || b.material[j] != 1) continue;
+      const double overlap = b.spheres[i].radius + b.spheres[j].radius - norm(b.spheres[i].centre - b.spheres[j].centre);
+      EXPECT_LE(overlap, seam * std::min(b.spheres[i].radius, b.spheres[j].radius));
+      seam_pairs += overlap > -1e-9 * b.spheres[i].radius;
+    }
+  EXPECT_GE(seam_pairs, zoned.seam_seated);
+  // Every pair of the body joins spheres of one zone, and a coarse pair's row
+  // is an REV row scaled by 2 (exactly: a power of 2) by its columns' units.
+  const auto& columns = chalk().info->history;
+  std::size_t coarse_pairs = 0;
+  for (std::size_t k = 0; k < b.pairs.size(); ++k) {
+    const auto [i, j] = b.pairs[k];
+    ASSERT_EQ(b.material[i], b.material[j]);
+    if (b.material[i] == 0) continue;
+    ++coarse_pairs;
+    const double* row = b.rows.data() + k * b.stride;
+    bool found = false;
+    for (std::size_t q = 0; q < r.pairs.size() && !found; ++q) {
+      const double* rev_row = r.rows.data() + q * r.stride;
+      bool same = true;
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        const double factor = columns[c].unit == "N" ? 4.0 : columns[c].unit == "N m" ? 8.0 : columns[c].unit == "m" ? 2.0 : 1.0;
+        same = same && row[c] == factor * rev_row[c];
+      }
+      found = same;
+    }
+    EXPECT_TRUE(found) << "pair " << k;
+  }
+  EXPECT_GT(coarse_pairs, r.pairs.size() / 2);  // two copies of the REV less what the box trims
 }
 
 }  // namespace

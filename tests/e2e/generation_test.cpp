@@ -17,12 +17,6 @@
 namespace dfc::testing {
 namespace {
 
-std::string last_snapshot(const h5::File& file, const std::string& role) {
-  auto names = h5::list_members(file, "/snapshots/" + role);
-  std::sort(names.begin(), names.end());
-  return "/snapshots/" + role + "/" + names.back();
-}
-
 struct GenerationRun {
   std::filesystem::path results;
   nlohmann::json generation;  ///< the DEM's configure reply "generation"

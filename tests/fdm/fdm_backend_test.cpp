@@ -50,7 +50,7 @@ TEST(FdmBackend, IdentityAndConfigureInfo) {
   EXPECT_EQ(info["zones"], 2 * 3 * 2);
   EXPECT_GT(info["dt_suggested"].get<double>(), 0.0);
   EXPECT_TRUE(info["dt_max"].is_null());  // mass scaling on by default
-  EXPECT_EQ(info["capabilities"], nlohmann::json::array({"snapshot"}));  // standalone: no interface
+  EXPECT_EQ(info["capabilities"], nlohmann::json::array({"snapshot", "checkpoint"}));  // standalone: no interface
   nlohmann::json real_masses = box_section("", "");
   real_masses["mass_scaling"] = false;
   FdmBackend dynamic;
@@ -60,7 +60,7 @@ TEST(FdmBackend, IdentityAndConfigureInfo) {
 TEST(FdmBackend, ProviderInterfaceHasTwoTrianglesPerQuadAndUniqueIds) {
   FdmBackend backend;
   const nlohmann::json info = backend.configure(box_section("provider", "zmax"));
-  EXPECT_EQ(info["capabilities"], nlohmann::json::array({"provides_interface", "snapshot"}));
+  EXPECT_EQ(info["capabilities"], nlohmann::json::array({"provides_interface", "snapshot", "checkpoint"}));
   const protocol::InterfaceMesh mesh = backend.interface_mesh();
   EXPECT_EQ(mesh.facet_count(), 2 * 2 * 3);  // 2 × (2 × 3 quads)
   EXPECT_EQ(mesh.node_count(), 3 * 4);

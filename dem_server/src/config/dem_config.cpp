@@ -165,6 +165,13 @@ PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact, do
   pile.geometry.sides = int(cfg.integer("sides", 24, 3, 1000));
   pile.velocity = to_vec3(cfg.vec3("velocity_m_s", {0.0, 0.0, 0.0}));
   pile.start_step = cfg.integer("start_step", 0, 0);
+  if (auto when = cfg.optional_child("start_when")) {
+    const double ratio = when->number("unbalanced_force_ratio", Bounds{0.0, 1.0, true});
+    if (!(ratio > 0.0)) when->fail("unbalanced_force_ratio", "expected a ratio in (0, 1), e.g. 0.002 (the generation's run.stop_when)");
+    pile.start_when = PileStartRule{ratio};
+    when->finish();
+  }
+  pile.ramp_steps = cfg.integer("ramp_steps", 0, 0);
   pile.contact = read_optional_contact(cfg, wall_contact, scale_factor);
   cfg.finish();
   return pile;
@@ -376,7 +383,13 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
   DemConfig c;
   c.scale_factor = read_scale_factor(cfg);
   c.particles = read_particles(cfg.child("particles"), c.scale_factor);
-  c.contact = read_upscaled_law(cfg.child("contact"), c.scale_factor);
+  const ContactLawSetting contact = read_contact_law(cfg.child("contact"));
+  if (c.particles.pcrm && !c.particles.pcrm->zones.empty()) {  // graded: the first zone's S is the section's
+    const auto& zones = c.particles.pcrm->zones;
+    c.scale_factor = zones.front().scale_factor;
+    for (std::size_t k = 1; k < zones.size(); ++k) c.material_laws.push_back(upscale(contact, zones[k].scale_factor));
+  }
+  c.contact = upscale(contact, c.scale_factor);
   auto wall_contact = cfg.optional_child("wall_contact");
   c.wall_contact = wall_contact ? read_upscaled_law(std::move(*wall_contact), c.scale_factor) : c.contact;
   if (auto damping = cfg.optional_child("damping")) {
@@ -446,7 +459,11 @@ std::string dem_config_help() {
                     {"type":"facets", "vertices_m":[[x,y,z],...], "facets":[[i,j,k],...], name, velocity_m_s,
                      start_step, contact} ]
   pile            {"radius_m", "tip_z_m", "length_m", "sides":24, "axis_xy_m":[0,0], "velocity_m_s":[0,0,0],
-                   "start_step":0, "contact"}  closed cylinder with a flat tip
+                   "start_step":0, "start_when":{"unbalanced_force_ratio": r} (rest until, at or after start_step,
+                   the unbalanced-force ratio is at most r: loading after equilibrium), "ramp_steps":0 (the
+                   velocity rises linearly from 0 over this many steps), "contact"}  closed
+                  cylinder with a flat tip; monitors pile_force_n, pile_tip_force_n, pile_shaft_force_n,
+                  pile_displacement_m
   ucs             {"top_wall", "bottom_wall" (names of two walls), "area_m2" (default: derived from a lattice
                    bed with platens normal to z: disc through the outermost particle of a cylinder, x-y bounding
                    box of a box), "seat_platens" (true: move both platens along the axis onto the outermost particles),

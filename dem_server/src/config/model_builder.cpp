@@ -27,6 +27,7 @@ double critical_step(const ParticleStore& particles, const DemConfig& c, const s
   double r_max = 0.0;
   for (const double r : particles.radius) r_max = std::max(r_max, r);
   std::vector<StiffnessBound> laws{c.contact.stiffness_bound(r_max), c.wall_contact.stiffness_bound(r_max)};
+  for (const auto& m : c.material_laws) laws.push_back(m.stiffness_bound(r_max));
   for (const auto& w : walls) laws.push_back(w.law.stiffness_bound(r_max));
   return critical_timestep(particles, laws);
 }
@@ -93,8 +94,10 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   config.rev.fraction_of_critical = c.timestep.fraction_of_critical;
   model.generation = generate_pcrm(config, sim.settings(), c.gravity);
   const ReplicatedBody& body = model.generation->body;
-  for (std::size_t k = 0; k < body.spheres.size(); ++k) sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density);
+  for (std::size_t k = 0; k < body.spheres.size(); ++k)
+    sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density, body.material[k]);
   sim.seed_pair_history(body.archive(), true);
+  if (!c.material_laws.empty()) sim.bond_across_materials_now();  // the seams between zones (pcrm_zones.hpp)
   const ParticleStore& p = sim.particles();
   if (c.pile)
     model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) { return inside_pile({p.position[i], p.radius[i]}, c.pile->geometry); });
@@ -102,6 +105,7 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   ReplicatedBody& held = model.generation->body;  // the simulation holds the body now
   held.id = {};
   held.spheres = {};
+  held.material = {};
   held.pairs = {};
   held.rows = {};
 }
@@ -127,14 +131,19 @@ DemModel build_model(const DemConfig& c) {
                                                                      .local_damping = c.local_damping,
                                                                      .skin = c.skin,
                                                                      .threads = c.threads,
-                                                                     .install_bonds_at_start = !prepared});
+                                                                     .install_bonds_at_start = !prepared,
+                                                                     .material_laws = c.material_laws});
   Simulation& sim = *model.simulation;
 
   // 1. Rigid walls and the pile.
   for (const auto& w : c.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
-  if (c.pile)
-    model.pile_wall = sim.add_wall(make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
-                                             c.pile->velocity, c.pile->start_step));
+  if (c.pile) {
+    // A pile that starts at equilibrium rests until DemBackend sets it moving (foundation_loading.hpp).
+    Wall pile = make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
+                          c.pile->start_when ? Vec3{} : c.pile->velocity, c.pile->start_step);
+    pile.facet_force.resize(pile.facet_count());  // its tip and shaft forces
+    model.pile_wall = sim.add_wall(std::move(pile));
+  }
 
   // 2. Particles; a generated sphere cut by a rigid wall would start with a huge overlap.
   if (c.particles.pcrm) {

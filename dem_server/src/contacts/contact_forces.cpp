@@ -12,15 +12,16 @@
 namespace dfc::dem {
 
 void Simulation::compute_pair_constants() {
-  std::visit([&](const auto& law) { dfc::dem::compute_pair_constants(law, particles_, pairs_); }, settings_.particle_law.law);
+  std::visit([&](const auto& table) { dfc::dem::compute_pair_constants(pair_laws(table, pairs_), particles_, pairs_); }, materials_.pair_laws());
 }
 
 bool Simulation::compute_contact_forces(double dt, ContactRecord record) {
   start_particle_loads(particles_, settings_.gravity, threads_);
-  bool excessive = std::visit([&](const auto& law) {
-    if (cell_) return evaluate_pair_contacts(law, particles_, pairs_, incidence_, outputs_, dt, record, threads_, PeriodicSpace(*cell_));
-    return evaluate_pair_contacts(law, particles_, pairs_, incidence_, outputs_, dt, record, threads_);
-  }, settings_.particle_law.law);
+  bool excessive = std::visit([&](const auto& table) {
+    const auto laws = pair_laws(table, pairs_);
+    if (cell_) return evaluate_pair_contacts(laws, particles_, pairs_, incidence_, outputs_, dt, record, threads_, PeriodicSpace(*cell_));
+    return evaluate_pair_contacts(laws, particles_, pairs_, incidence_, outputs_, dt, record, threads_);
+  }, materials_.pair_laws());
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     const std::size_t offset = wall_offsets_[w];
     select_wall_contacts(walls_[w], particles_, wall_contacts_[w], std::span(outputs_.point).subspan(offset, wall_contacts_[w].size()), threads_);

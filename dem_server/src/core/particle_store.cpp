@@ -8,7 +8,7 @@
 
 namespace dfc::dem {
 
-void ParticleStore::add_sphere(std::int64_t particle_id, Vec3 x, double r, double density) {
+void ParticleStore::add_sphere(std::int64_t particle_id, Vec3 x, double r, double density, std::uint16_t material_id) {
   if (!(r > 0.0) || !(density > 0.0))
     throw UserError("particle " + std::to_string(particle_id) + " needs a positive radius and density (got r = " + std::to_string(r) +
                     " m, rho = " + std::to_string(density) + " kg/m3)");
@@ -22,6 +22,7 @@ void ParticleStore::add_sphere(std::int64_t particle_id, Vec3 x, double r, doubl
   radius.push_back(r);
   mass.push_back(m);
   inertia.push_back(0.4 * m * r * r);  // solid sphere, I = 2/5 m r^2
+  material.push_back(material_id);
 }
 
 void ParticleStore::set_radius(std::size_t slot, double r) {
@@ -51,6 +52,7 @@ void ParticleStore::permute(std::span<const std::uint32_t> new_to_old) {
   permute_field(radius, new_to_old);
   permute_field(mass, new_to_old);
   permute_field(inertia, new_to_old);
+  permute_field(material, new_to_old);
 }
 
 void ParticleStore::retain(std::span<const std::uint32_t> kept_slots) { permute(kept_slots); }

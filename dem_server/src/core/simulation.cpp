@@ -22,16 +22,27 @@ namespace {
 constexpr double bonding_round_off = 1e-9;
 }  // namespace
 
-Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)) {
-  if (settings_.particle_law.info == nullptr) throw UserError("the simulation needs a particle contact law");
+namespace {
+std::vector<ContactLawSetting> all_materials(const SimulationSettings& settings) {
+  if (settings.particle_law.info == nullptr) throw UserError("the simulation needs a particle contact law");
+  std::vector<ContactLawSetting> out{settings.particle_law};
+  out.insert(out.end(), settings.material_laws.begin(), settings.material_laws.end());
+  return out;
+}
+}  // namespace
+
+Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)), materials_(all_materials(settings_)) {
   if (!(settings_.local_damping >= 0.0 && settings_.local_damping < 1.0)) throw UserError("local damping must be in [0, 1)");
   threads_ = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
   pairs_.stride = settings_.particle_law.history_size();
 }
 
-void Simulation::add_sphere(std::int64_t id, Vec3 centre, double radius, double density) {
+void Simulation::add_sphere(std::int64_t id, Vec3 centre, double radius, double density, MaterialId material) {
+  if (material >= materials_.count())
+    throw UserError("particle " + std::to_string(id) + " has material " + std::to_string(material) + " but the simulation has " +
+                    std::to_string(materials_.count()) + " materials");
   if (!ids_.insert(id).second) throw UserError("particle id " + std::to_string(id) + " is used twice; ids must be unique");
-  particles_.add_sphere(id, centre, radius, density);
+  particles_.add_sphere(id, centre, radius, density, material);
   stale_ = true;
 }
 
@@ -69,7 +80,7 @@ void Simulation::set_wall_velocity(std::size_t wall, const Vec3& velocity) {
 
 double Simulation::critical_timestep() const {
   const double r_max = largest_radius(particles_);
-  std::vector<StiffnessBound> laws{settings_.particle_law.stiffness_bound(r_max)};
+  std::vector<StiffnessBound> laws{materials_.stiffness_bound(r_max)};
   for (const auto& w : walls_) laws.push_back(w.law.stiffness_bound(r_max));
   return dfc::dem::critical_timestep(particles_, laws);
 }
@@ -77,6 +88,11 @@ double Simulation::critical_timestep() const {
 void Simulation::install_bonds_now() noexcept {
   if (bonds_installed_) return;
   install_requested_ = true;
+  stale_ = true;
+}
+
+void Simulation::bond_across_materials_now() noexcept {
+  join_materials_requested_ = true;
   stale_ = true;
 }
 
@@ -155,7 +171,8 @@ void Simulation::rebuild() {
   // 2. Cell grid; re-sort the particles by cell so that neighbours share cache lines.
   // Installing bonds needs every pair within the bonding gap, which may exceed the skin.
   const bool install = settings_.particle_law.bonded() && !bonds_installed_ && (settings_.install_bonds_at_start || install_requested_);
-  const double search = install ? std::max(skin_, 1.001 * settings_.particle_law.bond_gap()) : skin_;
+  const bool join = settings_.particle_law.bonded() && join_materials_requested_;
+  const double search = install || join ? std::max(skin_, 1.001 * materials_.largest_bond_gap()) : skin_;
   std::vector<std::uint32_t> order;
   if (cell_) check_cell_width(2.0 * r_max + search);
   const CellGrid grid = cell_ ? build_cell_grid(particles_.position, 2.0 * r_max + search, *cell_, order)
@@ -171,7 +188,9 @@ void Simulation::rebuild() {
   pairs_.stride = settings_.particle_law.history_size();
   pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
   restore_history(pairs_, particles_, pair_archive, threads_);
-  if (install) install_bonds();
+  assign_pair_laws();
+  if (install) install_bonds(false);
+  if (join) install_bonds(true);
   compute_pair_constants();
 
   bool with_couple = settings_.particle_law.has_couple();
@@ -221,17 +240,34 @@ void Simulation::append_persistent_pairs(const HistoryArchive& archive) {
   }
 }
 
-void Simulation::install_bonds() {
-  const double gap = settings_.particle_law.bond_gap();
+void Simulation::assign_pair_laws() {
+  pairs_.law_index.clear();
+  if (materials_.count() == 1) return;
+  pairs_.law_index.resize(pairs_.size());
+  for (std::size_t k = 0; k < pairs_.size(); ++k)
+    pairs_.law_index[k] = std::uint16_t(materials_.pair_index(particles_.material[pairs_.first[k]], particles_.material[pairs_.second[k]]));
+}
+
+void Simulation::install_bonds(bool across_materials_only) {
   const PeriodicSpace space = cell_ ? PeriodicSpace(*cell_) : PeriodicSpace();  // no cell: the plain difference
+  const double single_gap = materials_.pair_setting(0).bond_gap();
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::uint32_t i = pairs_.first[k], j = pairs_.second[k];
+    if (across_materials_only) {
+      const double* row = pairs_.row(k);
+      if (particles_.material[i] == particles_.material[j] || std::any_of(row, row + pairs_.stride, [](double v) { return v != 0.0; })) continue;
+    }
+    const double gap = pairs_.law_index.empty() ? single_gap : materials_.pair_setting(pairs_.law_index[k]).bond_gap();
     const double radii = particles_.radius[i] + particles_.radius[j];
     const double surface_gap = norm(space.branch(particles_.position[i], particles_.position[j])) - radii;
     // A touching pair is bonded whatever its size: |x_j - x_i| - r_i - r_j of
     // spheres placed exactly in contact is a few ulps either side of 0, so
     // the gap allows bonding_round_off (r_i + r_j) on top of bond_gap_m.
     if (surface_gap <= gap + bonding_round_off * radii) set_bond_state(pairs_.row(k), BondState::intact);
+  }
+  if (across_materials_only) {
+    join_materials_requested_ = false;
+    return;
   }
   bonds_installed_ = true;
   install_requested_ = false;

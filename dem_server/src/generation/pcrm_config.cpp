@@ -1,3 +1,4 @@
+#include "dfc/dem/particle_materials.hpp"
 #include "dfc/dem/pcrm_generation.hpp"
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/region_config.hpp"
@@ -5,8 +6,41 @@
 namespace dfc::dem {
 
 
+namespace {
+
+std::vector<PcrmZone> read_zones(ConfigReader& particles) {
+  std::vector<PcrmZone> zones;
+  if (!particles.has("zones")) {
+    particles.accept("zones");
+    return zones;
+  }
+  auto list = particles.children("zones");
+  if (list.empty()) particles.fail("zones", "expected at least one zone {\"scale_factor\": S, \"region\": {...}}");
+  if (list.size() > ParticleMaterials::max_count) particles.fail("zones", "at most " + std::to_string(ParticleMaterials::max_count) + " zones");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    PcrmZone zone;
+    zone.scale_factor = list[k].positive("scale_factor");
+    if (auto region = list[k].optional_child("region")) zone.region = read_region(std::move(*region));
+    else if (k + 1 < list.size()) list[k].fail("region", "every zone but the last needs a region (the last one takes the rest of particles.region)");
+    list[k].finish();
+    zones.push_back(zone);
+  }
+  return zones;
+}
+
+}  // namespace
+
 PcrmConfig read_pcrm(ConfigReader& particles, double scale_factor, double density) {
   PcrmConfig c;
+  c.zones = read_zones(particles);
+  if (!c.zones.empty()) {
+    if (scale_factor != 1.0)
+      particles.fail("zones", "each zone gives its own scale_factor, and the REV, the walls and the pile take the first zone's: remove the section's "
+                              "\"upscaling\"");
+    scale_factor = c.zones.front().scale_factor;
+  }
+  c.scale_factor = scale_factor;
+  c.seam_overlap_fraction = particles.number("seam_overlap_fraction", 0.1, Bounds{0.0, 0.5});
   {
     ConfigReader rev = particles.child("rev");
     c.rev.particles = read_radius_expansion(rev);
@@ -60,6 +94,15 @@ std::string pcrm_help() {
                    "surcharge_pa":0}
              protrusion_fraction (0, at most 0.5): a sphere may stick out of the region (and later out of the
                    coupling wall) by this fraction of its radius; 0 keeps whole spheres only
+             zones: graded upscaling (docs/dem_generation.md §7), e.g. [{"scale_factor":2.1, "region":{cylinder r 4.8 mm}},
+                   {"scale_factor":4.8}]: a sphere belongs to the first zone whose region holds its centre; the last
+                   zone may omit its region (the rest). The REV is prepared at the first zone's S and scaled to each
+                   zone's; the law's parameters are upscaled per zone, pairs of two zones mix them (geometric mean of
+                   the parameters that scale with S, arithmetic of the others) and are bonded at the first step
+                   (zero load, within the mixed bond gap). The walls and the pile use the first zone's S; the section's
+                   "upscaling" must be absent. Particles carry the zone index as "material" in the snapshots.
+             seam_overlap_fraction (0.1, at most 0.5): where two zones meet, a sphere overlapping one of an earlier
+                   zone by more than this fraction of the smaller radius is removed
              seat_on_walls (true): move each outermost sphere whose path is free onto the bottom and lateral faces
                    (the floor and the coupling wall), with the overlap of its share of the face's stress
              needs a law whose intact bond keeps its force in history ("soft_bond" or "damage_bond")

@@ -53,7 +53,20 @@ GeneratedBody generate_pcrm(const PcrmConfig& config, const SimulationSettings& 
             << out.rev_seconds << " s" << std::endl;
 
   const auto t1 = std::chrono::steady_clock::now();
-  out.body = replicate(out.rev, config.region, config.protrusion_fraction);
+  if (config.zones.empty()) {
+    out.body = replicate(out.rev, config.region, config.protrusion_fraction);
+    out.zone_spheres = {out.body.spheres.size()};
+  } else {
+    ZonedBody zoned = replicate_zones(out.rev, settings.particle_law.info->history, config.region, config.zones, config.protrusion_fraction,
+                                      config.seam_overlap_fraction);
+    out.body = std::move(zoned.body);
+    out.zone_spheres = std::move(zoned.zone_spheres);
+    out.seam_removed = zoned.seam_removed;
+    out.seam_seated = zoned.seam_seated;
+    std::cerr << "dem_server: pcrm zones:";
+    for (std::size_t k = 0; k < config.zones.size(); ++k) std::cerr << " S = " << config.zones[k].scale_factor << ": " << out.zone_spheres[k] << " spheres;";
+    std::cerr << " at the seams " << out.seam_removed << " removed, " << out.seam_seated << " seated" << std::endl;
+  }
   out.profile = config.profile;
   out.profile.unit_weight = config.rev.density * (1.0 - out.rev.porosity) * g;
   out.reference_stress = out.rev.stress.z;

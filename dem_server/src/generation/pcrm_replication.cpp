@@ -30,6 +30,11 @@ HistoryArchive ReplicatedBody::archive() const {
 
 ReplicatedBody replicate(const PreparedRev& rev, const BedRegion& region, double protrusion_fraction, bool periodic) {
   const auto [lo, hi] = region_bounds(region);
+  return replicate(rev, lo, hi, [&](const GeneratedSphere& s) { return clearance(s, region) >= -protrusion_fraction * s.radius; }, periodic);
+}
+
+ReplicatedBody replicate(const PreparedRev& rev, const Vec3& lo, const Vec3& hi, const std::function<bool(const GeneratedSphere&)>& keep,
+                         bool periodic) {
   const Vec3 l = rev.cell.length();
   ReplicatedBody body;
   body.stride = rev.stride;
@@ -49,10 +54,11 @@ ReplicatedBody replicate(const PreparedRev& rev, const BedRegion& region, double
     for (std::int64_t i = 0; i < n; ++i) {
       const GeneratedSphere& s = rev.spheres[std::size_t(i)];
       const GeneratedSphere placed{origin + (s.centre - rev.cell.lo), s.radius};
-      if (clearance(placed, region) < -protrusion_fraction * s.radius) continue;
+      if (!keep(placed)) continue;
       slot[std::size_t(i * copies + c)] = std::int64_t(body.spheres.size());
       body.spheres.push_back(placed);
       body.id.push_back(i * copies + c);
+      body.material.push_back(0);
     }
   }
   // Pairs: first of copy c with second of copy c + image, where that copy exists.

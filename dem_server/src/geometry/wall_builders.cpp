@@ -41,13 +41,17 @@ WallMesh make_closed_cylinder_mesh(const CylinderGeometry& g) {
   const std::uint32_t top_centre = 2 * s + 1;
   mesh.vertices.push_back({g.axis_x, g.axis_y, g.tip_z});
   mesh.vertices.push_back({g.axis_x, g.axis_y, g.tip_z + g.length});
+  // The flat tip first: a contact on its rim edge (or a rim vertex) is a tie
+  // between a tip facet and a side facet, and ties go to the lower facet index
+  // (select_wall_contacts), so the tip owns its rim (the tip force of
+  // foundation_loading.hpp includes the edge that leads the motion).
+  for (std::uint32_t k = 0; k < s; ++k) mesh.facets.push_back({bottom_centre, (k + 1) % s, k});  // flat tip, normal -z
   for (std::uint32_t k = 0; k < s; ++k) {
     const std::uint32_t next = (k + 1) % s;
     const std::uint32_t b0 = k, b1 = next, t0 = s + k, t1 = s + next;
     mesh.facets.push_back({b0, b1, t1});  // side panel, outward normal
     mesh.facets.push_back({b0, t1, t0});
-    mesh.facets.push_back({bottom_centre, b1, b0});  // flat tip, normal -z
-    mesh.facets.push_back({top_centre, t0, t1});     // top, normal +z
+    mesh.facets.push_back({top_centre, t0, t1});  // top, normal +z
   }
   return mesh;
 }

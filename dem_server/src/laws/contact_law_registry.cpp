@@ -14,6 +14,11 @@ ContactLaw make_law(std::span<const double> values) {
   return ContactLaw{Law::from_parameters(values)};
 }
 
+// What emod_pa sets wherever a law reads it: the linear frictional contact,
+// a bar of section pi R_min^2 and length R1 + R2 (the PFC deformability method).
+const std::string linear_contact_formula = "k_n = pi E* R_min^2/(R1+R2) [N/m], k_s = k_n/kratio";
+const std::string deformability_source = "Potyondy & Cundall (2004); Itasca PFC linear model (deformability); docs/theory/dem_contact_laws.md §2.2";
+
 std::vector<ContactLawInfo> build_registry() {
   std::vector<ContactLawInfo> table;
   table.push_back({
@@ -24,6 +29,9 @@ std::vector<ContactLawInfo> build_registry() {
       .parameters = LinearLaw::parameter_specs(),
       .history = LinearLaw::history_columns(),
       .make = &make_law<LinearLaw>,
+      .stiffness = {{"kn_n_m", "k_n = kn_n_m [N/m], the same for every pair", "Cundall & Strack (1979); docs/theory/dem_contact_laws.md §2.3"},
+                    {"ks_n_m", "k_s = ks_n_m [N/m], the same for every pair", "Cundall & Strack (1979); docs/theory/dem_contact_laws.md §2.3"}},
+      .renamed = {},
   });
   table.push_back({
       .keyword = std::string(LinearPbondLaw::keyword),
@@ -33,6 +41,10 @@ std::vector<ContactLawInfo> build_registry() {
       .parameters = LinearPbondLaw::parameter_specs(),
       .history = LinearPbondLaw::history_columns(),
       .make = &make_law<LinearPbondLaw>,
+      .stiffness = {{"emod_pa", linear_contact_formula, deformability_source},
+                    {"pb_emod_pa", "kbar_n = Ebar*/(R1+R2) [Pa/m] on the disc A = pi (pb_rmul R_min)^2, kbar_s = kbar_n/pb_kratio",
+                     "Potyondy & Cundall (2004) parallel bond; docs/theory/dem_contact_laws.md §2.1-2.3"}},
+      .renamed = {},
   });
   table.push_back({
       .keyword = std::string(SoftBondLaw::keyword),
@@ -42,6 +54,13 @@ std::vector<ContactLawInfo> build_registry() {
       .parameters = SoftBondLaw::parameter_specs(),
       .history = SoftBondLaw::history_columns(),
       .make = &make_law<SoftBondLaw>,
+      .stiffness = {{"sb_emod_pa",
+                     "k_n = E*/(R1+R2) [Pa/m] on the disc A = pi (sb_rmul R_min)^2, k_s = k_n/kratio, bonded and unbonded (k_n A [N/m] after breakage)",
+                     "Itasca PFC softbond (one stiffness set, bonded and unbonded); docs/theory/dem_contact_laws.md §1.1-1.2"}},
+      .renamed = {{"emod_pa", "sb_emod_pa",
+                   "soft_bond's modulus sets its bond disc, k_n = E*/(R1+R2) [Pa/m] on pi (sb_rmul R_min)^2, also after breakage; "
+                   "emod_pa is the linear contact's modulus (k_n = pi E* R_min^2/(R1+R2) [N/m] in linear_pbond and damage_bond), "
+                   "which differs by sb_rmul^2"}},
   });
   table.push_back({
       .keyword = std::string(DamageBondLaw::keyword),
@@ -51,6 +70,12 @@ std::vector<ContactLawInfo> build_registry() {
       .parameters = DamageBondLaw::parameter_specs(),
       .history = DamageBondLaw::history_columns(),
       .make = &make_law<DamageBondLaw>,
+      .stiffness = {{"emod_pa", linear_contact_formula + ", once the bond is damaged or broken",
+                     deformability_source + "; Zheng & Ciantia (2025) §3.6"},
+                    {"bond_emod_pa",
+                     "kbar_n = Ebar*/(R1+R2) [Pa/m] on the disc A = pi (bond_rmul R_min)^2, kbar_s = kbar_n/bond_kratio, times (1 - D)",
+                     "Zheng & Ciantia (2025) user guide Eq. 1; docs/theory/dem_contact_laws.md §2.2, §3.1"}},
+      .renamed = {},
   });
   return table;
 }
@@ -111,6 +136,10 @@ ContactLawSetting read_contact_law(ConfigReader cfg) {
   const std::string keyword = cfg.string("law", std::string(LinearLaw::keyword));
   const ContactLawInfo* info = find_contact_law(keyword);
   if (info == nullptr) cfg.fail("law", "unknown contact law \"" + keyword + "\"; the registry has " + registry_keywords());
+  for (const auto& old : info->renamed)
+    if (cfg.has(old.key))
+      cfg.fail(old.key, "law \"" + keyword + "\" reads this value as \"" + old.renamed_to + "\": " + old.why + "; rename the key to \"" +
+                            old.renamed_to + "\" (same value, same results)");
   ContactLawSetting setting;
   setting.info = info;
   for (const auto& spec : info->parameters)
@@ -139,6 +168,8 @@ std::string describe_contact_laws() {
     out << "  law \"" << info.keyword << "\": " << info.summary << "\n"
         << "    source: " << info.reference << "\n"
         << "    upscaling by S: " << info.upscaling_rule << "\n";
+    for (const auto& s : info.stiffness) out << "    stiffness: " << s.key << " sets " << s.formula << " (" << s.source << ")\n";
+    for (const auto& r : info.renamed) out << "    " << r.key << ": renamed " << r.renamed_to << " (refused: " << r.why << ")\n";
     for (const auto& p : info.parameters) {
       out << "    " << p.name << " [" << p.unit << "] ";
       if (p.default_value) out << "(default " << *p.default_value << ")";

@@ -13,7 +13,7 @@ std::vector<ParameterSpec> SoftBondLaw::parameter_specs() {
   // Upscaling (docs/theory/upscaling_and_pcrm.md §1–2): modulus, ratios, strengths and the
   // softening factors stay fixed; the bonding gap scales with S.
   return {
-      {"emod_pa", "Pa", std::nullopt, "effective modulus E*, k_n = E*/(R1+R2) [Pa/m] bonded and unbonded", positive, 0.0},
+      {"sb_emod_pa", "Pa", std::nullopt, "effective modulus E* of the bond disc, k_n = E*/(R1+R2) [Pa/m] bonded and unbonded", positive, 0.0},
       {"kratio", "-", 1.0, "normal-to-shear stiffness ratio kappa*", positive, 0.0},
       {"friction", "-", 0.5, "Coulomb friction coefficient mu of the unbonded contact", non_negative, 0.0},
       {"damping_ratio_normal", "-", 0.0, "normal viscous damping of the unbonded contact, fraction of critical", Bounds{0.0, 1.0}, 0.0},

@@ -89,14 +89,14 @@ def pbond_case(name, phases, overlap):
 
 
 # ---------------------------------------------------------------- soft_bond
-SB = dict(emod_pa=2.8e9, kratio=2.4, friction=0.5, damping_ratio_normal=0.0, sb_rmul=1.0, sb_mcf=1.0, sb_ten_pa=0.45e6,
+SB = dict(sb_emod_pa=2.8e9, kratio=2.4, friction=0.5, damping_ratio_normal=0.0, sb_rmul=1.0, sb_mcf=1.0, sb_ten_pa=0.45e6,
           sb_coh_pa=0.45e6, sb_fa_deg=32.0, sb_soft=100.0, sb_cut=0.05, bond_gap_m=0.0)  # Zheng et al. 2023 Table 2
 
 
 def soft_case(name, phases, overlap, params=None):
     p = dict(SB, **(params or {}))
     rb, a, i, j = section(p["sb_rmul"])
-    kn = p["emod_pa"] / (2 * R)
+    kn = p["sb_emod_pa"] / (2 * R)
     ks = kn / p["kratio"]
     st, zeta, gamma, beta = p["sb_ten_pa"], p["sb_soft"], p["sb_cut"], p["sb_mcf"]
     tanphi = math.tan(math.radians(p["sb_fa_deg"]))

@@ -76,6 +76,9 @@ class Dataset {
   /// row) at the end: values.size() rows of a 1-D dataset, values.size() / width
   /// rows of an [N, width] one (a size that is not a whole number of rows throws).
   void append_f64(std::span<const double> values);
+  /// Shrinks an extendable dataset to its first `rows` rows (a resumed run
+  /// drops the rows written after its checkpoint). More rows than it has throws.
+  void truncate_rows(std::int64_t rows);
 
   /// All values converted to double / int64 (HDF5 converts numeric types).
   [[nodiscard]] std::vector<double> read_f64() const;
@@ -112,6 +115,8 @@ class Group {
   Dataset write_dataset(const std::string& name, hid_t native_type, std::span<const std::int64_t> shape,
                         std::span<const std::byte> bytes) const;
   [[nodiscard]] Dataset open_dataset(const std::string& path) const;
+  /// Unlinks the member `name` (a group with all it holds, or a dataset).
+  void remove(const std::string& name) const;
 
  private:
   Handle handle_;
@@ -130,6 +135,10 @@ class File {
   /// being written, by this or another process, can be read (what was flushed is what is seen).
   /// Throws UserError naming the path when it is missing or not an HDF5 file.
   [[nodiscard]] static File open_read_only(const std::filesystem::path& path);
+  /// Opens an existing `path` for writing, unlocked like create() (a resumed
+  /// run appends to its results). Throws UserError naming the path when it is
+  /// missing or not a readable HDF5 file.
+  [[nodiscard]] static File open_read_write(const std::filesystem::path& path);
 
   [[nodiscard]] hid_t id() const noexcept { return handle_.get(); }
   [[nodiscard]] const std::filesystem::path& path() const noexcept { return path_; }
@@ -154,6 +163,8 @@ void write_attribute(hid_t object, const std::string& name, const char* value);
 void write_attribute(hid_t object, const std::string& name, std::int64_t value);
 void write_attribute(hid_t object, const std::string& name, double value);
 [[nodiscard]] bool has_attribute(hid_t object, const std::string& name);
+/// Deletes attribute `name` of `object` if it has one.
+void remove_attribute(hid_t object, const std::string& name);
 /// Reads a string attribute (variable- or fixed-length); throws Error if absent or not a string.
 [[nodiscard]] std::string read_string_attribute(hid_t object, const std::string& name);
 [[nodiscard]] std::int64_t read_int64_attribute(hid_t object, const std::string& name);

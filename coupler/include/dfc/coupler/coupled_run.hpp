@@ -1,12 +1,14 @@
 #pragma once
 // CoupledRun: the coupler's job from a validated scenario to a results file
-// (docs/theory/coupling.md, docs/results.md):
+// (docs/theory/coupling.md, docs/outputs.md):
 //   1. start the participants and greet them (versions, capabilities),
 //   2. configure each with its section (scenario hash checked),
 //   3. exchange the interface mesh (continuum -> dem),
 //   4. choose time steps: k DEM steps per exchange, m continuum steps covering the same time,
 //   5. run the exchanges (serial: DEM, then continuum), checking the force balance each time,
-//   6. write time series and snapshots (HDF5 + XDMF), report progress and a summary.
+//   6. write time series and snapshots (HDF5 + XDMF), report progress and a summary;
+//      every run.checkpoint_every exchanges and on a stop by signal, a coordinated
+//      checkpoint (run_checkpoint.hpp) from which `run --resume` continues bit for bit.
 #include <atomic>
 #include <filesystem>
 #include <iosfwd>
@@ -21,7 +23,9 @@ namespace dfc::coupler {
 struct RunOptions {
   std::filesystem::path output_directory;  ///< overrides the scenario's output.directory when not empty
   bool progress = true;
-  const std::atomic<bool>* stop_requested = nullptr;  ///< set by SIGINT/SIGTERM: stop after the current exchange
+  const std::atomic<bool>* stop_requested = nullptr;  ///< set by SIGINT/SIGTERM: stop after the current exchange (and a checkpoint)
+  /// Continue the run in output_directory from its last checkpoint (docs/checkpoints.md).
+  bool resume = false;
 };
 
 /// Runs the scenario; progress and the summary go to `log`, failures to

@@ -45,10 +45,15 @@ class StopRequest {
   [[nodiscard]] bool requested() const noexcept { return flag_ != nullptr && flag_->load(); }
   /// Throws RunInterrupted naming `pending` (what the run is busy with) once the grace has passed.
   void check(const std::string& pending);
+  /// From now the waits may go on for `extra` more than the grace: the
+  /// checkpoint a stop writes at an exchange boundary, with every server
+  /// responsive, gets the run's deadline to finish.
+  void grant(std::chrono::milliseconds extra);
 
  private:
   const std::atomic<bool>* flag_;
   std::optional<std::chrono::steady_clock::time_point> first_seen_;
+  std::chrono::milliseconds granted_{0};
 };
 
 class Participant {

@@ -1,5 +1,5 @@
 #pragma once
-// ResultsWriter: the one HDF5 file a run produces (docs/results.md), plus its XDMF
+// ResultsWriter: the one HDF5 file a run produces (docs/outputs.md), plus its XDMF
 // sidecar for ParaView.
 //
 // Layout ("format" = "dfc-results-1"):
@@ -83,6 +83,16 @@ class ResultsWriter {
   /// Root attribute `name` holding JSON text (e.g. "summary"); replaces an earlier value.
   void set_attribute(const std::string& name, const std::string& json_text);
 
+  /// Where the file stands after a flush(): the rows, the columns and the
+  /// snapshots, as JSON. A checkpoint stores it; reopen() continues from it.
+  [[nodiscard]] nlohmann::json resume_point();
+  /// Reopens `path`, which this class wrote, and continues it from
+  /// `resume_point` (a resumed run, docs/checkpoints.md): rows and snapshots
+  /// written after it are removed, and so are the root attributes summary,
+  /// failure and interrupted of the process that stopped. Throws UserError
+  /// naming the path when the file cannot be opened or does not hold them.
+  [[nodiscard]] static ResultsWriter reopen(std::filesystem::path path, const nlohmann::json& resume_point);
+
   /// Writes buffered rows, brings the sidecar up to date and flushes the file to disk.
   void flush();
   /// flush(), write the XDMF sidecar, close the file. Idempotent; later writes throw std::logic_error.
@@ -94,6 +104,7 @@ class ResultsWriter {
   [[nodiscard]] std::filesystem::path xdmf_path() const;
 
  private:
+  ResultsWriter() = default;
   struct State;
   State& open_state(const char* operation) const;
   std::unique_ptr<State> state_;

@@ -46,11 +46,19 @@ struct RunSpec {
   double deadline_s = 60.0;      ///< per request (SPEC.md §9)
   double startup_timeout_s = 20; ///< for a started server to print DFC-LISTENING
   std::int64_t snapshot_every = 0;  ///< exchanges between snapshots; 0: initial and final only
+  /// exchanges between coordinated checkpoints (docs/checkpoints.md); 0: none
+  /// (then only a stop by signal writes one, where every server can)
+  std::int64_t checkpoint_every = 0;
   /// run.stop_when.unbalanced_force_ratio: the run ends at the first exchange
   /// after which every participant's unbalanced_force_ratio monitor is at most
   /// this (equilibrium); `exchanges` is then the most it may take.
   std::optional<double> stop_unbalanced_force_ratio;
   std::int64_t stop_min_exchanges = 1;  ///< run.stop_when.min_exchanges: never before this many
+  /// run.stop_when.monitor / at_least: the run also ends at the first exchange
+  /// after which this time-series column (e.g. "dem_pile_displacement_m", a
+  /// number monitor named "<slot>_<monitor>") is at least `stop_monitor_at_least`.
+  std::optional<std::string> stop_monitor;
+  double stop_monitor_at_least = 0.0;
 };
 
 struct Scenario {

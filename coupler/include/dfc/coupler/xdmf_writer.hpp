@@ -48,6 +48,10 @@ struct XdmfSnapshot {
 /// The point count when `snapshot` is drawn as vertices (particles, or a grid
 /// without hexahedra); nothing when it is drawn otherwise or left out.
 [[nodiscard]] std::optional<std::int64_t> polyvertex_point_count(const XdmfSnapshot& snapshot);
+/// The bond count when `snapshot` (particles) carries bond_position [m, 3] and
+/// bond_state [m]: the sidecar then draws them as a second collection
+/// "<role>_bonds", points at the bond midpoints with their state.
+[[nodiscard]] std::optional<std::int64_t> bond_point_count(const XdmfSnapshot& snapshot);
 /// Where the results file holds 0, 1, ..., points-1 (int64) for Polyvertex topologies: "/xdmf/polyvertex_<points>".
 [[nodiscard]] std::string polyvertex_connectivity_path(std::int64_t points);
 

@@ -34,21 +34,44 @@ inline void set_pair_bodies(const ParticleStore& p, std::uint32_t i, std::uint32
   kin.radius_second = p.radius[j];
 }
 
+/// The law of each pair contact: one law for every pair (a single particle
+/// material), or a table of pair laws indexed per contact
+/// (PairContacts::law_index, particle_materials.hpp). The index is read only
+/// where there is a table, a branch that goes the same way for a whole list.
+template <ContactLawKernel Law>
+struct PairLaws {
+  const Law* table = nullptr;                ///< the single law, or pair_index order
+  const std::uint16_t* index = nullptr;      ///< per contact; nullptr: always table[0]
+  [[nodiscard]] const Law& operator[](std::size_t k) const noexcept { return index == nullptr ? table[0] : table[index[k]]; }
+};
+
+/// PairLaws over `table` for `pairs` (a single law when the table has one).
+template <ContactLawKernel Law>
+[[nodiscard]] PairLaws<Law> pair_laws(const std::vector<Law>& table, const PairContacts& pairs) noexcept {
+  return {table.data(), table.size() > 1 && !pairs.law_index.empty() ? pairs.law_index.data() : nullptr};
+}
+
 /// Sets pairs.constants for the current lists (laws without pair constants: none).
 template <ContactLawKernel Law>
-void compute_pair_constants(const Law& law, const ParticleStore& p, PairContacts& pairs) {
+void compute_pair_constants(const PairLaws<Law>& laws, const ParticleStore& p, PairContacts& pairs) {
   if constexpr (HasPairConstants<Law>) {
     pairs.constants_stride = Law::constants_size;
     pairs.constants.resize(pairs.size() * Law::constants_size);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       ContactKinematics kin;
       set_pair_bodies(p, pairs.first[k], pairs.second[k], kin);
-      law.pair_constants(kin, pairs.constants.data() + k * Law::constants_size);
+      laws[k].pair_constants(kin, pairs.constants.data() + k * Law::constants_size);
     }
   } else {
     pairs.constants_stride = 0;
     pairs.constants.clear();
   }
+}
+
+/// The same with one law for every pair.
+template <ContactLawKernel Law>
+void compute_pair_constants(const Law& law, const ParticleStore& p, PairContacts& pairs) {
+  compute_pair_constants(PairLaws<Law>{&law, nullptr}, p, pairs);
 }
 
 /// Candidates classified per block of a range before any is evaluated
@@ -102,7 +125,7 @@ struct PairStage {
 /// acting contacts, as before; a separated pair adds only a +0 (step 2 in
 /// the body), and where a +0 enters a sum does not change its bits.
 template <ContactLawKernel Law, class Space = OpenSpace>
-bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
+bool evaluate_pair_contacts(const PairLaws<Law>& laws, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
                             ContactRecord record, int threads, const Space& space = {}) {
   const auto chunks = static_cast<std::int64_t>(incidence.pair_chunks());
   constexpr std::uint8_t both_direct = Incidence::direct_first | Incidence::direct_second;
@@ -156,7 +179,7 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
           out.point[k] = p.position[i];
           if constexpr (Law::has_couple) out.couple[k] = Vec3{};
         }
-        law.separate(pairs.row(k));
+        laws[k].separate(pairs.row(k));
         // The gather adds zeros here. Of those only the first body's +0 force
         // can change a bit (a -0 component of m g, from a -0 gravity component,
         // becomes +0); the second body's -0 leaves any value as it is, and so
@@ -213,6 +236,7 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
           double* history = pairs.row(k);
           const ContactKinematics& kin = stage.kinematics[a];
           ContactForce f;
+          const Law& law = laws[k];
           if constexpr (RotatesInPlaneHistory<Law>) f = law.evaluate_in_plane(kin, pairs.constants_row(k), history);
           else if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
           else f = law.evaluate(kin, history);
@@ -242,6 +266,13 @@ bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pair
     }
   }
   return excessive;
+}
+
+/// The same with one law for every pair.
+template <ContactLawKernel Law, class Space = OpenSpace>
+bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
+                            ContactRecord record, int threads, const Space& space = {}) {
+  return evaluate_pair_contacts(PairLaws<Law>{&law, nullptr}, p, pairs, incidence, out, dt, record, threads, space);
 }
 
 /// Evaluates the candidates of one wall into outputs[offset, offset + size).

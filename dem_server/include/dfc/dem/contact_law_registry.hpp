@@ -27,6 +27,23 @@ namespace dfc::dem {
 /// Every law the kernels are compiled for. Dispatch: std::visit once per step.
 using ContactLaw = std::variant<LinearLaw, LinearPbondLaw, SoftBondLaw, DamageBondLaw>;
 
+/// Which stiffness one modulus (or stiffness) key of a law sets, stated once
+/// for --help, docs/dem_bond_laws.md and the test that checks it against the
+/// law's force (tests/dem/law_stiffness_test.cpp).
+struct StiffnessMeaning {
+  std::string key;      ///< the parameter, e.g. "emod_pa"
+  std::string formula;  ///< e.g. "k_n = pi E* R_min^2/(R1+R2) [N/m], k_s = k_n/kratio"
+  std::string source;   ///< paper (and equation) the formula comes from
+};
+
+/// A key the law once read with a meaning another law gives it: refused with
+/// a keyed error naming the new key, never read silently.
+struct RenamedKey {
+  std::string key;         ///< the old name
+  std::string renamed_to;  ///< the new name (same value, same result)
+  std::string why;         ///< what the old name would be misread as
+};
+
 struct ContactLawInfo {
   std::string keyword;
   std::string summary;         ///< one line
@@ -35,6 +52,8 @@ struct ContactLawInfo {
   std::vector<ParameterSpec> parameters;
   std::vector<HistoryColumn> history;
   ContactLaw (*make)(std::span<const double> values) = nullptr;  ///< values in `parameters` order
+  std::vector<StiffnessMeaning> stiffness;  ///< one per modulus or stiffness key
+  std::vector<RenamedKey> renamed;
 };
 
 [[nodiscard]] const std::vector<ContactLawInfo>& contact_law_registry();

@@ -29,6 +29,10 @@ struct PairContacts {
   /// contact of constants_stride doubles; set at every list rebuild.
   std::size_t constants_stride = 0;
   std::vector<double> constants;
+  /// Per contact, the index of its pair law (ParticleMaterials::pair_index of
+  /// the two particles' materials); empty with a single material. Set at
+  /// every list rebuild.
+  std::vector<std::uint16_t> law_index;
 
   [[nodiscard]] std::size_t size() const noexcept { return first.size(); }
   [[nodiscard]] double* row(std::size_t k) noexcept { return history.data() + k * stride; }

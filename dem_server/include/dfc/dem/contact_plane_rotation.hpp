@@ -102,7 +102,7 @@ struct ContactTwirl {
 // A free function on purpose: an aggregate holding a copy of the normal with
 // the twirl, built per contact, was kept on the stack by GCC 12 and read back
 // from it for every vector (perf: those loads were the hottest instructions):
-// +45 % time of the whole unbonded benchmark (docs/dem_benchmarks.md, ninth pass).
+// +45 % time of the whole unbonded benchmark (docs/dem_benchmarks.md, "What the code does for speed").
 [[nodiscard]] inline Vec3 turn_with_contact_plane(const Vec3& v, const Vec3& normal, const ContactTwirl& twirl) noexcept {
   return twirl.apply(rotate_into_contact_plane(v, normal), normal);
 }

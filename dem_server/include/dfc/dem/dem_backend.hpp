@@ -15,6 +15,7 @@
 //   pile_displacement_m        pile travel along its velocity direction (positive = penetration)
 //   pile_force_n               force of the particles on the pile along -velocity direction
 //                              (positive = resisting penetration), averaged over the advance
+//   pile_tip_force_n, pile_shaft_force_n  its part on the flat end's facets and on the others
 //   wall_<name>_force_n/_moment_nm  particles on each rigid wall (moment about the origin), averaged
 //   axial_stress_pa, axial_strain   with a "ucs" section only (ucs_platens.hpp): platen stress,
 //                              compression positive, averaged over the advance; strain at its end
@@ -30,6 +31,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "dfc/dem/cell_servo.hpp"
@@ -48,6 +50,9 @@ class DemBackend final : public protocol::SolverBackend {
   protocol::AdvanceResult advance(const protocol::AdvanceRequest& request) override;
   [[nodiscard]] nlohmann::json monitors() override;
   [[nodiscard]] std::vector<protocol::Array> snapshot(std::string& kind) override;
+  /// Capability checkpoint (dem_checkpoint.cpp): the simulation's running state and the last advance's averages.
+  [[nodiscard]] std::string checkpoint_state() override;
+  void restore_state(std::string_view bytes) override;
 
   /// The model (tests, tools). Throws ProtocolError(out_of_order) before configure.
   [[nodiscard]] const Simulation& simulation() const;
@@ -73,6 +78,9 @@ class DemBackend final : public protocol::SolverBackend {
   std::optional<TriaxialRun> triaxial_;       ///< with a "triaxial" section
   Vec3 cell_reference_length_;                ///< m, cell edges at the end of preparation
   Vec3 pile_reference_;                       ///< m, a pile vertex at configure
+  std::vector<std::size_t> pile_tip_;         ///< facets of the pile's flat end (foundation_loading.hpp)
+  bool pile_waiting_ = false;                 ///< pile.start_when given and not yet met
+  std::int64_t pile_start_step_ = 0;          ///< first moving step of the pile (start_step, or when start_when was met)
   nlohmann::json averages_ = nlohmann::json::object();  ///< advance-averaged monitors of the last advance
 };
 

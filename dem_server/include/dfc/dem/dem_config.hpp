@@ -12,6 +12,7 @@
 #include "dfc/dem/bed_generator.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/equilibrium_target.hpp"
+#include "dfc/dem/foundation_loading.hpp"
 #include "dfc/dem/pcrm_generation.hpp"
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/radius_expansion.hpp"
@@ -43,6 +44,8 @@ struct PileConfig {
   CylinderGeometry geometry;
   Vec3 velocity;  ///< m/s
   std::int64_t start_step = 0;
+  std::optional<PileStartRule> start_when;  ///< rest until equilibrium (foundation_loading.hpp)
+  std::int64_t ramp_steps = 0;              ///< steps over which the velocity rises from 0 (foundation_loading.hpp)
   ContactLawSetting contact;
 };
 
@@ -75,7 +78,10 @@ struct TimestepConfig {
 struct DemConfig {
   double scale_factor = 1.0;       ///< particle upscaling S (radii and law parameters already scaled)
   ParticleConfig particles;
-  ContactLawSetting contact;       ///< particle–particle
+  ContactLawSetting contact;       ///< particle–particle (material 0: the first zone of a graded body)
+  /// Materials 1, 2, ... (particle_materials.hpp): "contact" upscaled by the
+  /// S of pcrm zones 1, 2, ...; empty without zones.
+  std::vector<ContactLawSetting> material_laws;
   ContactLawSetting wall_contact;  ///< particle–wall default, and the coupling wall
   double local_damping = 0.7;
   TimestepConfig timestep;

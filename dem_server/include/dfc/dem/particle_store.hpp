@@ -24,12 +24,15 @@ struct ParticleStore {
   std::vector<double> radius;          ///< m
   std::vector<double> mass;            ///< kg
   std::vector<double> inertia;         ///< kg m^2, 2/5 m r^2 for a solid sphere
+  /// Material (particle_materials.hpp): which contact-law parameter set the
+  /// particle's pairs use; a zone of a graded model (0 without zones).
+  std::vector<std::uint16_t> material;
 
   [[nodiscard]] std::size_t size() const noexcept { return id.size(); }
 
   /// Appends a solid sphere at rest. Throws UserError for a non-positive
   /// radius or density.
-  void add_sphere(std::int64_t particle_id, Vec3 x, double r, double density);
+  void add_sphere(std::int64_t particle_id, Vec3 x, double r, double density, std::uint16_t material_id = 0);
 
   /// Sets the radius of `slot`, keeping its density: mass and inertia follow
   /// (radius expansion, radius_expansion.hpp). Throws UserError for r <= 0.

@@ -9,6 +9,7 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/dem/pcrm_replication.hpp"
+#include "dfc/dem/pcrm_zones.hpp"
 #include "dfc/dem/wall.hpp"
 #include "dfc/dem/rev_preparation.hpp"
 #include "dfc/dem/stress_profile.hpp"
@@ -23,12 +24,16 @@ struct PcrmConfig {
   StressProfile profile;                    ///< unit_weight set at generation from the REV's porosity and |g|
   double protrusion_fraction = 0.0;         ///< pcrm_replication.hpp
   bool seat = true;                         ///< boundary_seating.hpp: seat the body on its walls (rigid and coupling)
+  double scale_factor = 1.0;                ///< S of the REV (the section's, or the first zone's)
+  std::vector<PcrmZone> zones;              ///< graded upscaling (pcrm_zones.hpp); empty: one zone, the whole region
+  double seam_overlap_fraction = 0.1;       ///< pcrm_zones.hpp
 };
 
 /// Reads the keys of generator "pcrm" inside "particles" ("rev", "region",
-/// "stress", "protrusion_fraction"; not density or generator). Radii and the
-/// REV cell are multiplied by `scale_factor`; the REV's timestep fraction is
-/// the model builder's to set.
+/// "stress", "protrusion_fraction", "zones", ...; not density or generator).
+/// Radii and the REV cell are multiplied by `scale_factor`, or with zones by
+/// the first zone's S (then `scale_factor` must be 1: the zones give S); the
+/// REV's timestep fraction is the model builder's to set.
 [[nodiscard]] PcrmConfig read_pcrm(ConfigReader& particles, double scale_factor, double density);
 
 /// The "pcrm" part of dem_config_help().
@@ -41,6 +46,9 @@ struct GeneratedBody {
   double reference_stress = 0.0;  ///< Pa, the REV's measured sigma_v
   StressScalingReport scaling;
   std::size_t seated = 0;     ///< spheres moved onto a wall (boundary_seating.hpp), the coupling wall's included
+  std::vector<std::size_t> zone_spheres;  ///< per zone (one zone without zones), before the walls' trimming
+  std::size_t seam_removed = 0;           ///< spheres removed where two zones meet (pcrm_zones.hpp)
+  std::size_t seam_seated = 0;            ///< spheres seated on an earlier zone's packing (pcrm_zones.hpp)
   double rev_seconds = 0.0, replication_seconds = 0.0;  ///< wall time of the stages (logged, not in results: not deterministic)
 };
 

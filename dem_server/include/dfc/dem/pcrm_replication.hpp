@@ -17,6 +17,7 @@
 // whole sphere inside). A pair is kept when both spheres are.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "dfc/dem/bed_generator.hpp"
@@ -28,6 +29,7 @@ namespace dfc::dem {
 struct ReplicatedBody {
   std::vector<std::int64_t> id;          ///< per sphere
   std::vector<GeneratedSphere> spheres;
+  std::vector<std::uint16_t> material;   ///< per sphere: the zone of a graded body (pcrm_zones.hpp), else 0
   std::size_t stride = 0;
   std::vector<std::array<std::uint32_t, 2>> pairs;  ///< indices into spheres (first has the smaller id)
   std::vector<double> rows;              ///< pairs.size() * stride
@@ -44,5 +46,11 @@ struct ReplicatedBody {
 /// `periodic`: the region is itself a periodic cell of whole copies (a box of
 /// n L): pairs that leave the last copy join the first (a 2 x 2 x 2 REV).
 [[nodiscard]] ReplicatedBody replicate(const PreparedRev& rev, const BedRegion& region, double protrusion_fraction, bool periodic = false);
+
+/// The copies tile the box [lo, hi] from lo (as many as cover it); a placed
+/// sphere is kept when `keep` says so (replicate() above keeps those inside
+/// the region by the protrusion rule).
+[[nodiscard]] ReplicatedBody replicate(const PreparedRev& rev, const Vec3& lo, const Vec3& hi, const std::function<bool(const GeneratedSphere&)>& keep,
+                                       bool periodic = false);
 
 }  // namespace dfc::dem

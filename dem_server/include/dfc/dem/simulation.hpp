@@ -37,19 +37,28 @@
 #include "dfc/dem/bond_state.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/contact_lists.hpp"
+#include "dfc/dem/particle_materials.hpp"
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/wall.hpp"
 
+namespace dfc {
+class StateWriter;
+class StateReader;
+}  // namespace dfc
+
 namespace dfc::dem {
 
 struct SimulationSettings {
-  ContactLawSetting particle_law;  ///< particle–particle contacts
+  ContactLawSetting particle_law;  ///< particle–particle contacts (material 0)
   Vec3 gravity;                    ///< m/s^2 (already N g in a centrifuge)
   double local_damping = 0.7;      ///< alpha of local damping, [0, 1)
   double skin = 0.0;               ///< m, Verlet skin; <= 0: 0.2 x the largest radius
   int threads = 0;                 ///< OpenMP threads; <= 0: the OpenMP default
   bool install_bonds_at_start = true;  ///< bonded laws: bond at the first rebuild (false: wait for install_bonds_now)
+  /// Laws of particle materials 1, 2, ... (graded upscaling: a zone each;
+  /// particle_materials.hpp): the same law as particle_law, other parameters.
+  std::vector<ContactLawSetting> material_laws{};
 };
 
 class Simulation {
@@ -57,8 +66,9 @@ class Simulation {
   explicit Simulation(SimulationSettings settings);
 
   // Set-up --------------------------------------------------------------------
-  /// Adds a solid sphere at rest. Ids must be unique (UserError otherwise).
-  void add_sphere(std::int64_t id, Vec3 centre, double radius, double density);
+  /// Adds a solid sphere at rest. Ids must be unique and the material one of
+  /// the settings' (UserError otherwise).
+  void add_sphere(std::int64_t id, Vec3 centre, double radius, double density, MaterialId material = 0);
   /// Direct access to the particle arrays (e.g. to set velocities); the
   /// neighbour lists are rebuilt before the next step.
   [[nodiscard]] ParticleStore& particles_for_edit();
@@ -87,6 +97,11 @@ class Simulation {
   /// Bonded laws: bonds every pair within the bond gap at the next rebuild
   /// (forced now); no effect once bonds were installed.
   void install_bonds_now() noexcept;
+  /// Bonded laws: at the next rebuild (forced now), bonds every pair of
+  /// particles of different materials within their pair law's bond gap
+  /// whose history is empty, with zero load (the law's rule): the seams
+  /// between the zones of a graded generated body, whose pairs no REV held.
+  void bond_across_materials_now() noexcept;
   /// Pair history (rows of particle_law's layout, keyed by particle ids) that
   /// the next rebuild restores instead of the current lists' history: a body
   /// built from a prepared one (PCRM replication, pcrm_replication.hpp) starts
@@ -121,17 +136,31 @@ class Simulation {
   [[nodiscard]] double skin() const noexcept { return skin_; }
   [[nodiscard]] int threads() const noexcept { return threads_; }
   [[nodiscard]] const SimulationSettings& settings() const noexcept { return settings_; }
+  [[nodiscard]] const ParticleMaterials& materials() const noexcept { return materials_; }
   [[nodiscard]] const std::optional<PeriodicCell>& periodic_cell() const noexcept { return cell_; }
   [[nodiscard]] bool bonds_installed() const noexcept { return bonds_installed_; }
   /// Bonds by state over the particle pairs (all zero for an unbonded law).
   [[nodiscard]] BondCounts bond_counts() const noexcept;
 
+  // Checkpoint (simulation_checkpoint.cpp) ------------------------------------
+  /// Every member that changes while the simulation runs, as raw bytes: the
+  /// contact lists in their order, the Verlet references, the step counters.
+  void save_state(StateWriter& out) const;
+  /// Replaces the running state by save_state()'s of a simulation built from
+  /// the same settings and walls; the next step is the one the saved
+  /// simulation would have taken. Throws StateFormatError when they differ.
+  void load_state(StateReader& in);
+
  private:
   void rebuild();
   /// Appends the pairs of `archive` with a bond (ever) that the search did not find.
   void append_persistent_pairs(const HistoryArchive& archive);
-  /// Bonds every pair with a surface gap <= the law's bond gap (first rebuild).
-  void install_bonds();
+  /// Bonds every pair with a surface gap <= its law's bond gap (first
+  /// rebuild); with `across_materials_only`, only unbonded pairs of particles
+  /// of different materials whose history is empty.
+  void install_bonds(bool across_materials_only);
+  /// PairContacts::law_index for the new lists (more than one material).
+  void assign_pair_laws();
   /// The particle law's pair constants for the new lists (contact_forces.cpp).
   void compute_pair_constants();
   /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
@@ -141,6 +170,7 @@ class Simulation {
   void check_cell_width(double reach) const;
 
   SimulationSettings settings_;
+  ParticleMaterials materials_;  ///< settings_.particle_law, then material_laws
   int threads_ = 1;
   double skin_ = 0.0;
   double r_max_ = 0.0;  ///< m, largest radius at the last rebuild
@@ -163,6 +193,7 @@ class Simulation {
   bool stale_ = true;
   bool bonds_installed_ = false;
   bool install_requested_ = false;
+  bool join_materials_requested_ = false;
 
   std::optional<HistoryArchive> seeded_pairs_;  ///< seed_pair_history(), consumed by the next rebuild
 

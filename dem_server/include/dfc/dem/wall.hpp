@@ -47,6 +47,9 @@ struct Wall {
   Vec3 force;                      ///< N, sum over contacts
   Vec3 moment;                     ///< N m, about the global origin
   Vec3 force_on_particles;         ///< N, sum of the contact forces ON particles, summed on the particle side (= -force)
+  /// N, per facet, ON the wall; kept only where sized to the facet count
+  /// (the pile: its tip and shaft forces, foundation_loading.hpp), empty otherwise.
+  std::vector<Vec3> facet_force;
 
   [[nodiscard]] std::size_t vertex_count() const noexcept { return vertices.size(); }
   [[nodiscard]] std::size_t facet_count() const noexcept { return facets.size(); }

@@ -19,6 +19,8 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "dfc/fdm/fdm_config.hpp"
@@ -35,6 +37,9 @@ class FdmBackend final : public protocol::SolverBackend {
   protocol::AdvanceResult advance(const protocol::AdvanceRequest& request) override;
   [[nodiscard]] nlohmann::json monitors() override;
   [[nodiscard]] std::vector<protocol::Array> snapshot(std::string& kind) override;
+  /// Capability checkpoint (fdm_checkpoint.cpp): the solver's running state and the interface monitors.
+  [[nodiscard]] std::string checkpoint_state() override;
+  void restore_state(std::string_view bytes) override;
 
  private:
   [[nodiscard]] Solver& solver();

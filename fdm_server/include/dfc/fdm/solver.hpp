@@ -31,6 +31,11 @@
 #include "dfc/fdm/mesh.hpp"
 #include "dfc/fdm/tetrahedron.hpp"
 
+namespace dfc {
+class StateWriter;
+class StateReader;
+}  // namespace dfc
+
 namespace dfc::fdm {
 
 struct Material {
@@ -109,6 +114,13 @@ class Solver {
   /// ½ Σ m v² with the real masses after the last step, J.
   [[nodiscard]] double kinetic_energy() const { return kinetic_energy_; }
   [[nodiscard]] std::int64_t step_count() const { return step_count_; }
+
+  // Checkpoint (solver_checkpoint.cpp) --------------------------------------
+  /// Every member that changes while the solver runs or is coupled, as raw bytes.
+  void save_state(StateWriter& out) const;
+  /// Replaces the running state by save_state()'s of a solver built from the
+  /// same mesh, material and settings. Throws StateFormatError when they differ.
+  void load_state(StateReader& in);
 
  private:
   struct GridpointForces {

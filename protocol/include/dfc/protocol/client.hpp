@@ -89,6 +89,10 @@ class SolverClient {
   Message advance(std::int64_t step, std::int64_t n_steps, double dt, std::vector<Array> inputs, std::chrono::milliseconds deadline);
   nlohmann::json query(std::chrono::milliseconds deadline);
   Message snapshot(std::chrono::milliseconds deadline);
+  /// The server writes its complete state to `path` (SPEC.md §4.7); returns its step then.
+  std::int64_t checkpoint(const std::string& path, std::chrono::milliseconds deadline);
+  /// The server (configured, not yet advanced) continues from the file at `path`; returns its step.
+  std::int64_t restore(const std::string& path, std::chrono::milliseconds deadline);
   void shutdown(std::chrono::milliseconds deadline);
 
   Connection& connection() noexcept { return connection_; }

@@ -18,6 +18,7 @@ enum class ErrorCode {
   bad_config,        ///< configure section rejected; body.key names the key path
   unsupported,       ///< the server lacks the capability the request needs
   solver_failure,    ///< the solver cannot continue (instability, non-finite state)
+  bad_checkpoint,    ///< 1.3: a checkpoint file that cannot be written, read, or belongs to another solver, version or section
   internal           ///< a bug in the server
 };
 

@@ -15,7 +15,7 @@ namespace dfc::protocol {
 
 inline constexpr std::string_view kProtocolName = "dfc";
 inline constexpr int kVersionMajor = 1;
-inline constexpr int kVersionMinor = 2;
+inline constexpr int kVersionMinor = 3;
 /// Largest advance.n_steps (SPEC.md §4); the coupler's scenario keys that set
 /// steps per exchange are bounded by it, so `check` refuses what `run` would.
 inline constexpr std::int64_t kMaxStepsPerAdvance = 1'000'000'000;
@@ -30,6 +30,8 @@ inline constexpr std::string_view set_interface = "set_interface";
 inline constexpr std::string_view advance = "advance";
 inline constexpr std::string_view query = "query";
 inline constexpr std::string_view snapshot = "snapshot";
+inline constexpr std::string_view checkpoint = "checkpoint";  ///< 1.3, capability checkpoint
+inline constexpr std::string_view restore = "restore";        ///< 1.3, capability checkpoint
 inline constexpr std::string_view ping = "ping";
 inline constexpr std::string_view shutdown = "shutdown";
 
@@ -40,6 +42,8 @@ inline constexpr std::string_view ok = "ok";
 inline constexpr std::string_view advanced = "advanced";
 inline constexpr std::string_view monitors = "monitors";
 inline constexpr std::string_view snapshot_data = "snapshot_data";
+inline constexpr std::string_view checkpointed = "checkpointed";
+inline constexpr std::string_view restored = "restored";
 inline constexpr std::string_view pong = "pong";
 inline constexpr std::string_view bye = "bye";
 inline constexpr std::string_view error = "error";

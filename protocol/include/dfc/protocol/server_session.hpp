@@ -4,7 +4,9 @@
 //
 //   fresh --hello--> greeted --configure--> configured --advance--> running
 //   any state --shutdown--> closed;   running --solver failure--> failed
+//   configured --restore--> running (1.3, capability checkpoint)
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "dfc/protocol/codec.hpp"
@@ -36,6 +38,10 @@ class ServerSession {
   Message on_advance(const Message& request);
   Message on_query(const Message& request);
   Message on_snapshot(const Message& request);
+  Message on_checkpoint(const Message& request);
+  Message on_restore(const Message& request);
+  /// body.path of a checkpoint or restore request, after the capability check (UNSUPPORTED).
+  [[nodiscard]] std::string checkpoint_path(const Message& request) const;
   void require_state(const Message& request, std::initializer_list<SessionState> allowed) const;
   Message reply_to(const Message& request, std::string_view type);
 
@@ -44,6 +50,7 @@ class ServerSession {
   SessionState state_ = SessionState::fresh;
   std::int64_t step_ = 0;
   std::int64_t next_seq_ = 0;
+  std::string section_hash_;  ///< configured.scenario_hash, stamped on checkpoints
 };
 
 }  // namespace dfc::protocol

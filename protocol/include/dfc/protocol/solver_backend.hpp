@@ -7,6 +7,7 @@
 // each one backend plus a five-line main().
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -32,6 +33,7 @@ namespace capability {
 inline constexpr const char* provides_interface = "provides_interface";  ///< answers get_interface; advance takes force, returns velocity
 inline constexpr const char* accepts_interface = "accepts_interface";    ///< answers set_interface; advance takes velocity, returns force
 inline constexpr const char* snapshot = "snapshot";
+inline constexpr const char* checkpoint = "checkpoint";  ///< 1.3: answers checkpoint and restore (SPEC.md §4.7)
 }  // namespace capability
 
 struct SolverIdentity {
@@ -93,6 +95,19 @@ class SolverBackend {
 
   /// Full state for output (SPEC.md §6.4). `kind` is set to "particles" or "grid".
   [[nodiscard]] virtual std::vector<Array> snapshot(std::string& kind) = 0;
+
+  /// Capability checkpoint (SPEC.md §4.7): every member that changes while the
+  /// solver runs, as bytes (dfc/common/state_archive.hpp); what configure and
+  /// the interface set up from the section is not stored, it is rebuilt.
+  [[nodiscard]] virtual std::string checkpoint_state() {
+    throw ProtocolError(ErrorCode::unsupported, "this server cannot write checkpoints (it lacks capability 'checkpoint')");
+  }
+  /// Restores checkpoint_state()'s bytes into a server configured (and given
+  /// its interface) as the one that wrote them. Throws dfc::StateFormatError
+  /// or ProtocolError(bad_checkpoint) for bytes that do not fit this model.
+  virtual void restore_state(std::string_view /*bytes*/) {
+    throw ProtocolError(ErrorCode::unsupported, "this server cannot restore checkpoints (it lacks capability 'checkpoint')");
+  }
 };
 
 }  // namespace dfc::protocol

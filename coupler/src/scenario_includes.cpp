@@ -1,0 +1,57 @@
+#include "dfc/coupler/scenario_includes.hpp"
+
+#include <string>
+
+#include "dfc/common/errors.hpp"
+
+namespace dfc::coupler {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Files included within files: more than this is a cycle, not a design.
+constexpr int kMaxIncludeDepth = 8;
+
+nlohmann::json resolve(const nlohmann::json& value, const fs::path& directory, const JsonFileLoader& load, const std::string& path, int depth) {
+  if (value.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (std::size_t k = 0; k < value.size(); ++k) out.push_back(resolve(value[k], directory, load, path + "[" + std::to_string(k) + "]", depth));
+    return out;
+  }
+  if (!value.is_object()) return value;
+  const std::string prefix = path.empty() ? "" : path + ".";
+  nlohmann::json out = nlohmann::json::object();
+  if (const auto it = value.find("include"); it != value.end()) {
+    const std::string key = prefix + "include";
+    if (!it->is_string() || it->get<std::string>().empty())
+      throw ConfigError(key, "expected the path of a JSON file (relative to this file) whose object this one extends");
+    if (depth >= kMaxIncludeDepth)
+      throw ConfigError(key, "includes nest deeper than " + std::to_string(kMaxIncludeDepth) + " files; check for a file that includes itself");
+    const fs::path file = directory / it->get<std::string>();
+    nlohmann::json included;
+    try {
+      included = load(file);
+    } catch (const UserError& e) {
+      throw ConfigError(key, std::string("cannot use '") + file.string() + "': " + e.what());
+    }
+    if (!included.is_object()) throw ConfigError(key, "'" + file.string() + "' holds no JSON object; an included file is an object of keys");
+    out = resolve(included, file.parent_path(), load, path, depth + 1);
+  }
+  for (const auto& [name, child] : value.items()) {
+    if (name == "include") continue;
+    nlohmann::json resolved = resolve(child, directory, load, prefix + name, depth);
+    nlohmann::json patch = nlohmann::json::object();
+    patch[name] = std::move(resolved);
+    out.merge_patch(patch);
+  }
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json resolve_includes(const nlohmann::json& document, const fs::path& directory, const JsonFileLoader& load) {
+  return resolve(document, directory, load, "", 0);
+}
+
+}  // namespace dfc::coupler

@@ -1,0 +1,43 @@
+// DemBackend's checkpoint (protocol/SPEC.md §4.7, docs/checkpoints.md): the
+// simulation's running state (Simulation::save_state) and the monitors the
+// last advance averaged, and whether the pile still waits for its start
+// (pile.start_when) and the step it started at. Everything else the backend holds (the servo and
+// triaxial controls, the platen axis, the pile's and the cell's reference
+// lengths, the generation report) follows from the section and the interface
+// mesh, which a resumed run sends again before restore: it is rebuilt, not stored.
+#include "dfc/common/state_archive.hpp"
+#include "dfc/dem/dem_backend.hpp"
+
+namespace dfc::dem {
+
+namespace {
+constexpr std::uint32_t kLayoutVersion = 2;  ///< raise when the stored members change
+}  // namespace
+
+std::string DemBackend::checkpoint_state() {
+  StateWriter out;
+  out.value(kLayoutVersion);
+  sim().save_state(out);
+  out.tag("averages");
+  out.string(averages_.dump());  // numbers as shortest round-trip text: the same doubles come back
+  out.tag("pile");
+  out.value(pile_waiting_);
+  out.value(pile_start_step_);
+  return out.take();
+}
+
+void DemBackend::restore_state(std::string_view bytes) {
+  StateReader in(bytes, "the dem_server checkpoint");
+  if (in.value<std::uint32_t>() != kLayoutVersion) in.fail("state layout " + std::to_string(kLayoutVersion));
+  sim().load_state(in);
+  in.tag("averages");
+  const std::string averages = in.string();
+  averages_ = nlohmann::json::parse(averages, nullptr, false);
+  if (!averages_.is_object()) in.fail("the averaged monitors as a JSON object");
+  in.tag("pile");
+  in.value(pile_waiting_);
+  in.value(pile_start_step_);
+  in.finish();
+}
+
+}  // namespace dfc::dem

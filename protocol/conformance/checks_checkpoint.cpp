@@ -1,0 +1,112 @@
+// SPEC.md §4.7 (protocol 1.3): checkpoint and restore. A server with
+// capability checkpoint writes its state where it is told and restores it
+// only while configured; a missing or damaged file gets BAD_CHECKPOINT and
+// changes nothing. A server without it answers both with UNSUPPORTED.
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "check.hpp"
+#include "context.hpp"
+#include "expectations.hpp"
+
+namespace dfc::conformance {
+
+namespace protocol = dfc::protocol;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A folder for this checker's checkpoint files, one per checker process.
+fs::path scratch_file(const std::string& name) {
+  const fs::path folder = fs::temp_directory_path() / ("dfc-conformance-" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  return folder / name;
+}
+
+void without_capability_is_unsupported(Context& context) {
+  if (context.checkpoint) throw NotApplicable("the server has capability checkpoint");
+  expect_error(context.request(protocol::type::checkpoint, {{"path", scratch_file("unsupported.checkpoint").string()}}), {"UNSUPPORTED"});
+  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("unsupported.checkpoint").string()}}), {"UNSUPPORTED"});
+}
+
+void needs_capability(const Context& context) {
+  if (!context.checkpoint) throw NotApplicable("the server lacks capability checkpoint");
+}
+
+void missing_path_is_bad_message(Context& context) {
+  needs_capability(context);
+  expect_error(context.request(protocol::type::checkpoint), {"BAD_MESSAGE"});
+  expect_error(context.request(protocol::type::restore, {{"path", 3}}), {"BAD_MESSAGE"});
+}
+
+void missing_file_is_bad_checkpoint(Context& context) {
+  needs_capability(context);
+  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("never_written.checkpoint").string()}}), {"BAD_CHECKPOINT"});
+}
+
+void damaged_file_is_bad_checkpoint(Context& context) {
+  needs_capability(context);
+  const fs::path file = scratch_file("damaged.checkpoint");
+  std::ofstream(file, std::ios::binary) << "DFCCKPT1 not a checkpoint";
+  expect_error(context.request(protocol::type::restore, {{"path", file.string()}}), {"BAD_CHECKPOINT"});
+}
+
+void write_then_restore_while_configured(Context& context) {
+  needs_capability(context);
+  const fs::path file = scratch_file("configured.checkpoint");
+  const protocol::Message written = context.request(protocol::type::checkpoint, {{"path", file.string()}});
+  expect_type(written, protocol::type::checkpointed);
+  expect_step(written, context.step);
+  expect(fs::is_regular_file(file), "the server answered checkpointed but wrote no file at " + file.string());
+  const protocol::Message restored = context.request(protocol::type::restore, {{"path", file.string()}});
+  expect_type(restored, protocol::type::restored);
+  expect_step(restored, context.step);
+}
+
+void restore_when_running_is_out_of_order(Context& context) {
+  needs_capability(context);
+  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("configured.checkpoint").string()}}), {"OUT_OF_ORDER"});
+}
+
+void checkpoint_when_running_has_current_step(Context& context) {
+  needs_capability(context);
+  const fs::path file = scratch_file("running.checkpoint");
+  const protocol::Message written = context.request(protocol::type::checkpoint, {{"path", file.string()}});
+  expect_type(written, protocol::type::checkpointed);
+  expect_step(written, context.step);
+  expect(fs::is_regular_file(file), "the server answered checkpointed but wrote no file at " + file.string());
+  fs::remove_all(file.parent_path());
+}
+
+}  // namespace
+
+std::vector<Check> checkpoint_checks_configured() {
+  using M = Milestone;
+  return {
+      {"checkpoint.unsupported", "without capability checkpoint, checkpoint and restore get UNSUPPORTED", M::configured, M::none, true,
+       without_capability_is_unsupported},
+      {"checkpoint.missing_path", "checkpoint or restore without a string body.path gets BAD_MESSAGE", M::configured, M::none, true,
+       missing_path_is_bad_message},
+      {"checkpoint.missing_file", "restore from a file that does not exist gets BAD_CHECKPOINT", M::configured, M::none, true,
+       missing_file_is_bad_checkpoint},
+      {"checkpoint.damaged_file", "restore from a damaged file gets BAD_CHECKPOINT", M::configured, M::none, true,
+       damaged_file_is_bad_checkpoint},
+      {"checkpoint.configured_round_trip", "checkpoint while configured gets checkpointed and a file; restore of it gets restored at that step",
+       M::configured, M::none, true, write_then_restore_while_configured},
+  };
+}
+
+std::vector<Check> checkpoint_checks_running() {
+  using M = Milestone;
+  return {
+      {"checkpoint.restore_refused_when_running", "restore after advancing gets OUT_OF_ORDER", M::stepped, M::none, true,
+       restore_when_running_is_out_of_order},
+      {"checkpoint.running", "checkpoint after advancing gets checkpointed at the current step and a file", M::stepped, M::none, true,
+       checkpoint_when_running_has_current_step},
+  };
+}
+
+}  // namespace dfc::conformance
