@@ -3,8 +3,8 @@
 // run by bench/generation_compare.sh).
 //
 //   generation_compare --scenario FILE [--radius-m R] [--height-m H] [--sides 48]
-//                      [--ratio 0.002] [--max-steps 2000000] [--threads 1] [--porosity N] [--pcrm-only]
-//                      [--require-equilibrium]
+//                      [--ratio 0.002] [--max-steps 2000000] [--unbonded-max-steps M] [--threads 1]
+//                      [--porosity N] [--pcrm-only] [--require-equilibrium]
 //
 // FILE is a coupled generation scenario (tests/e2e/scenarios/centrifuge_generation_small.json):
 // its DEM section (generator "pcrm", a cylinder region, a floor) and its
@@ -24,8 +24,11 @@
 // the Love-Weber stress over horizontal slices one REV cell high, the top and
 // bottom slices left out (the scenario's profile rule, particle_stress.hpp),
 // against sigma_v = gamma (z_s - z) and sigma_h = K0 sigma_v. Progress on stderr.
-// --max-steps caps each settling stage (a route that hits it reports
-// "reached": false and the ratio it got to). --porosity: the conventional
+// --max-steps caps each settling stage and the conventional relaxation (a
+// route that hits it reports "reached": false and the ratio it got to).
+// --unbonded-max-steps: a lower cap of the conventional settling before
+// bonding (its unbonded packing creeps towards the ratio slowly: the bonds
+// then stop it, and the body still ends at the ratio; see the doc). --porosity: the conventional
 // expansion's target (default the PCRM body's porosity; in rigid walls that
 // jams, see the doc). --pcrm-only: the PCRM route alone.
 // --require-equilibrium: exit 1 unless both routes reached the ratio and
@@ -48,6 +51,7 @@
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/model_builder.hpp"
 #include "dfc/dem/particle_stress.hpp"
+#include "dfc/dem/pcrm_replication.hpp"
 #include "dfc/dem/settling.hpp"
 
 namespace {
@@ -62,6 +66,7 @@ struct Options {
   int sides = 48;
   double ratio = 0.002;
   std::int64_t max_steps = 2000000;
+  std::int64_t unbonded_max_steps = 0;  ///< cap of the conventional settling before bonding; 0: max_steps
   int threads = 1;
   double porosity = 0.0;  ///< conventional target; 0: the PCRM body's
   bool require_equilibrium = false;
@@ -74,7 +79,8 @@ Options parse(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
       std::cout << "generation_compare --scenario FILE [--radius-m R] [--height-m H] [--sides 48] [--ratio 0.002]\n"
-                   "                   [--max-steps 2000000] [--threads 1] [--porosity N] [--pcrm-only] [--require-equilibrium]\n"
+                   "                   [--max-steps 2000000] [--unbonded-max-steps M] [--threads 1] [--porosity N] [--pcrm-only]\n"
+                   "                   [--require-equilibrium]\n"
                    "PCRM against conventional generation of the scenario's DEM body at N g in rigid walls\n"
                    "(docs/dem_generation.md); one JSON object per route on stdout.\n";
       std::exit(0);
@@ -99,6 +105,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--sides") o.sides = std::stoi(v);
     else if (a == "--ratio") o.ratio = std::stod(v);
     else if (a == "--max-steps") o.max_steps = std::stoll(v);
+    else if (a == "--unbonded-max-steps") o.unbonded_max_steps = std::stoll(v);
     else if (a == "--threads") o.threads = std::stoi(v);
     else if (a == "--porosity") o.porosity = std::stod(v);
     else throw std::runtime_error("unknown option " + a);
@@ -185,7 +192,11 @@ json final_state(const Simulation& sim, const BedRegion& region, double slice_he
   const Measurements m = measure(sim);
   const BondCounts bonds = sim.bond_counts();
   double top = -INFINITY;
-  for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.position[i].z + p.radius[i]);
+  std::size_t outside = 0;  // centres out of the region: spheres thrown out of the container
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    top = std::max(top, p.position[i].z + p.radius[i]);
+    if (clearance({p.position[i], 0.0}, region) < 0.0) ++outside;
+  }
   json walls = json::object();
   for (const Wall& w : sim.walls()) walls[w.name + "_weight_share"] = -w.force.z / m.total_weight;
   const auto mean = [](const std::vector<double>& v) {
@@ -211,6 +222,7 @@ json final_state(const Simulation& sim, const BedRegion& region, double slice_he
           {"k_max", *std::max_element(k.begin(), k.end())},
           {"porosity_interior", mean(porosity)},
           {"top_m", top},
+          {"outside_region", outside},
           {"walls", walls}};
 }
 
@@ -227,7 +239,10 @@ bool finite_errors(const json& state) {
 int main(int argc, char** argv) try {
   const Options o = parse(argc, argv);
   const DemConfig config = parse_dem_config(dem_section(o));
-  const SettlingTarget target{.unbalanced_force_ratio = o.ratio, .check_every = 10, .min_steps = 200, .max_steps = o.max_steps};
+  SettlingTarget target{.unbalanced_force_ratio = o.ratio, .check_every = 10, .min_steps = 200, .max_steps = o.max_steps, .on_check = {}};
+  target.on_check = [](std::int64_t steps, double ratio) {  // progress on stderr, every 1 000 steps
+    if (steps % 1000 == 0) std::cerr << "  settling: step " << steps << ", unbalanced-force ratio " << ratio << std::endl;
+  };
   const PcrmConfig& pcrm = *config.particles.pcrm;
   bool ok = true;
 
@@ -277,6 +292,13 @@ int main(int argc, char** argv) try {
   spec.density = config.particles.density;
   spec.fraction_of_critical = config.timestep.fraction_of_critical;
   spec.settling = target;
+  if (o.unbonded_max_steps > 0) spec.settling.max_steps = o.unbonded_max_steps;
+  spec.bonded_settling = target;
+  spec.relaxation_max_steps = o.max_steps;
+  // The relaxation ends when the lid carries 1 % of the self-weight stress at
+  // the floor: the stress the expansion stored is then small against the
+  // field the body is generated for, and no sphere leaves with the lid.
+  spec.relaxed_lid_pressure = 0.01 * generated.profile.vertical(pcrm.region.z_min);
   std::vector<Wall> walls;
   for (const auto& w : config.walls) walls.push_back(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact));
   const SimulationSettings settings{.particle_law = config.contact,
@@ -291,15 +313,18 @@ int main(int argc, char** argv) try {
   conv_out["route"] = "conventional";
   conv_out["target_porosity"] = spec.particles.porosity;
   conv_out["dt_s"] = conventional.dt;
-  conv_out["reached"] = conventional.settling.reached && conventional.bonded_settling.reached;
+  conv_out["reached"] = conventional.relaxation.reached && conventional.settling.reached && conventional.bonded_settling.reached;
   conv_out["ratio_before_bonding"] = conventional.settling.ratio;
+  conv_out["lid_pressure_pa"] = conventional.lid_pressure;
+  conv_out["relaxed_lid_pressure_pa"] = conventional.relaxed_lid_pressure;
   conv_out["stages"] = {{"expansion", stage(conventional.expansion.steps, conventional.expansion.seconds, n_conv)},
+                        {"relaxation", stage(conventional.relaxation.steps, conventional.relaxation.seconds, n_conv)},
                         {"settling", stage(conventional.settling.steps, conventional.settling.seconds, n_conv)},
                         {"bonding_and_settling", stage(conventional.bonded_settling.steps, conventional.bonded_settling.seconds, n_conv)}};
-  conv_out["seconds"] = conventional.expansion.seconds + conventional.settling.seconds + conventional.bonded_settling.seconds;
-  conv_out["steps"] = conventional.expansion.steps + conventional.settling.steps + conventional.bonded_settling.steps;
+  conv_out["seconds"] = conventional.expansion.seconds + conventional.relaxation.seconds + conventional.settling.seconds + conventional.bonded_settling.seconds;
+  conv_out["steps"] = conventional.expansion.steps + conventional.relaxation.steps + conventional.settling.steps + conventional.bonded_settling.steps;
   std::cout << conv_out.dump() << std::endl;
-  ok = ok && conventional.settling.reached && conventional.bonded_settling.reached && finite_errors(conv_out);
+  ok = ok && conventional.relaxation.reached && conventional.settling.reached && conventional.bonded_settling.reached && finite_errors(conv_out);
   return o.require_equilibrium && !ok ? 1 : 0;
 } catch (const std::exception& e) {
   std::cerr << "generation_compare: " << e.what() << "\n";

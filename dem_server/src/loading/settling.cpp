@@ -13,6 +13,7 @@ Settling settle(Simulation& sim, double dt, const SettlingTarget& target) {
     ++out.steps;
     if (!check) continue;
     out.ratio = measure(sim).unbalanced_force_ratio;
+    if (target.on_check) target.on_check(out.steps, out.ratio);
     if (out.ratio <= target.unbalanced_force_ratio) {
       out.reached = true;
       break;

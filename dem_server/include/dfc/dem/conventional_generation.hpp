@@ -8,10 +8,13 @@
 //   1. radius expansion of the whole region, closed by its walls and a lid,
 //      to the target porosity, without gravity (radius_expansion.hpp: the
 //      same drawing, placement and growth as the REV's, over the whole domain);
-//   2. the lid removed and N g on: settling until the unbalanced-force ratio is
+//   2. relaxation in the closed container until the lid carries at most a
+//      given pressure (the growth leaves the packing jammed at megapascals;
+//      the lid off at once throws the top spheres out: measured, see the doc);
+//   3. the lid removed and N g on: settling until the unbalanced-force ratio is
 //      at most the target (settling.hpp). The packing moves to its new
 //      simulation with its pair history; the wall contacts start afresh;
-//   3. bonds within the bond gap installed with zero load
+//   4. bonds within the bond gap installed with zero load
 //      (Simulation::install_bonds_now), then settling again to the same
 //      ratio: the bonds take up the self-weight.
 // The stress state is what settling leaves: sigma_v follows the weight less
@@ -34,7 +37,10 @@ struct ConventionalSpec {
   BedRegion region;                  ///< the walls' inside: a box or a vertical cylinder
   double density = 0.0;              ///< kg/m3, solid
   double fraction_of_critical = 0.2; ///< of the grown packing's critical step, for settling
-  SettlingTarget settling;           ///< stop of both settling stages
+  SettlingTarget settling;           ///< stop of the settling before bonding (its check interval also paces the relaxation)
+  SettlingTarget bonded_settling;    ///< stop of the settling after bonding
+  double relaxed_lid_pressure = 0.0; ///< Pa, the relaxation's stop (e.g. 1 % of the self-weight stress at the floor)
+  std::int64_t relaxation_max_steps = 2000000;
 };
 
 /// One stage: steps, wall time (not deterministic: reported, never compared) and its stop.
@@ -49,7 +55,9 @@ struct ConventionalBody {
   std::unique_ptr<Simulation> simulation;  ///< the settled, bonded body in the walls (no lid), under N g
   double dt = 0.0;                         ///< s, the settling step
   ExpansionReport expansion_report;
-  GenerationStage expansion, settling, bonded_settling;
+  double lid_pressure = 0.0;               ///< Pa, the lid's normal force over the region's top area at the end of the expansion
+  double relaxed_lid_pressure = 0.0;       ///< Pa, the same at the end of the relaxation
+  GenerationStage expansion, relaxation, settling, bonded_settling;
 };
 
 /// `settings`: the particle law, gravity (N g), damping, threads (bond

@@ -6,6 +6,7 @@
 // equilibration outside a coupled run (the coupled run stops on the same
 // ratio through run.stop_when, checked at every exchange).
 #include <cstdint>
+#include <functional>
 
 #include "dfc/dem/simulation.hpp"
 
@@ -16,6 +17,8 @@ struct SettlingTarget {
   std::int64_t check_every = 10;     ///< steps (the coupled runs' exchange interval)
   std::int64_t min_steps = 200;      ///< before the first check counts (a run.stop_when's min_exchanges)
   std::int64_t max_steps = 2000000;
+  /// Called at every check (steps so far, ratio): progress for a long run; may be empty.
+  std::function<void(std::int64_t, double)> on_check;
 };
 
 struct Settling {
