@@ -23,7 +23,8 @@
 // object per route: spheres, bonds, the steps and wall time of each stage, and
 // the Love-Weber stress over horizontal slices one REV cell high, the top and
 // bottom slices left out (the scenario's profile rule, particle_stress.hpp),
-// against sigma_v = gamma (z_s - z) and sigma_h = K0 sigma_v. Progress on stderr.
+// against sigma_v = gamma (z_s - z) and sigma_h = K0 sigma_v; the wall time
+// of each stage and the CPU time of each route. Progress on stderr.
 // --max-steps caps each settling stage and the conventional relaxation (a
 // route that hits it reports "reached": false and the ratio it got to).
 // --unbonded-max-steps: a lower cap of the conventional settling before
@@ -36,6 +37,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -118,6 +120,10 @@ Options parse(int argc, char** argv) {
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+/// s, the CPU time of this process: with one DEM thread the measure that
+/// another job on the machine does not inflate (wall time does).
+double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
 /// The open side wall: `sides` panels inscribed in the circle, in rows about
 /// four panel widths high at most; shared vertices share indices.
@@ -248,6 +254,7 @@ int main(int argc, char** argv) try {
 
   // (a) PCRM: the model builder's route in the rigid walls, then settling under N g.
   std::cerr << "generation_compare: pcrm" << std::endl;
+  double cpu_start = cpu_seconds();
   auto start = std::chrono::steady_clock::now();
   DemModel model = build_model(config);
   const double build_seconds = seconds_since(start);
@@ -256,6 +263,7 @@ int main(int argc, char** argv) try {
   start = std::chrono::steady_clock::now();
   const Settling pcrm_settling = settle(body, model.dt, target);
   const double pcrm_settle_seconds = seconds_since(start);
+  const double pcrm_cpu_seconds = cpu_seconds() - cpu_start;
   const double slice_height = generated.rev.cell.length().z;
   json pcrm_out = final_state(body, pcrm.region, slice_height, generated.profile);
   const std::size_t n_rev = generated.rev.spheres.size(), n_pcrm = body.particles().size();
@@ -272,6 +280,7 @@ int main(int argc, char** argv) try {
                         {"trimming_and_seating", stage(0, fit_seconds, 0)},
                         {"settling", stage(pcrm_settling.steps, pcrm_settle_seconds, n_pcrm)}};
   pcrm_out["seconds"] = build_seconds + pcrm_settle_seconds;
+  pcrm_out["cpu_seconds"] = pcrm_cpu_seconds;
   pcrm_out["steps"] = generated.rev.steps + pcrm_settling.steps;
   std::cout << pcrm_out.dump() << std::endl;
   ok = ok && pcrm_settling.reached && finite_errors(pcrm_out);
@@ -307,7 +316,9 @@ int main(int argc, char** argv) try {
                                     .skin = config.skin,
                                     .threads = config.threads,
                                     .install_bonds_at_start = false};
+  cpu_start = cpu_seconds();
   const ConventionalBody conventional = generate_conventionally(spec, settings, walls);
+  const double conventional_cpu_seconds = cpu_seconds() - cpu_start;
   json conv_out = final_state(*conventional.simulation, pcrm.region, slice_height, generated.profile);
   const std::size_t n_conv = conventional.simulation->particles().size();
   conv_out["route"] = "conventional";
@@ -322,6 +333,7 @@ int main(int argc, char** argv) try {
                         {"settling", stage(conventional.settling.steps, conventional.settling.seconds, n_conv)},
                         {"bonding_and_settling", stage(conventional.bonded_settling.steps, conventional.bonded_settling.seconds, n_conv)}};
   conv_out["seconds"] = conventional.expansion.seconds + conventional.relaxation.seconds + conventional.settling.seconds + conventional.bonded_settling.seconds;
+  conv_out["cpu_seconds"] = conventional_cpu_seconds;
   conv_out["steps"] = conventional.expansion.steps + conventional.relaxation.steps + conventional.settling.steps + conventional.bonded_settling.steps;
   std::cout << conv_out.dump() << std::endl;
   ok = ok && conventional.relaxation.reached && conventional.settling.reached && conventional.bonded_settling.reached && finite_errors(conv_out);
