@@ -77,7 +77,8 @@ for name, routes in rows:
     for route in ("pcrm", "conventional"):
         r = routes[route]
         stages = "+".join(f"{r['stages'][s]['seconds']:.1f}" for s in STAGES[route])
-        ratio_before = f" (before bonding {r['ratio_before_bonding']:.3f})" if route == "conventional" else ""
+        ratio_before = (f" (before bonding {r['ratio_before_bonding']:.3f}, {'at' if r['settled_before_bonding'] else 'capped above'} the ratio)"
+                        if route == "conventional" else "")
         print(f"{name:12s} {route:12s} {r['spheres']:8d} {r['bonds_intact'] + r['bonds_damaged']:7d} {stages:>30s} {r['seconds']:8.1f} {r['cpu_seconds']:7.1f} {r['steps']:8d} "
               f"{work(r) / 1e6:8.1f} {r['unbalanced_force_ratio']:7.4f} {100 * r['sigma_v_error_rms']:6.1f}/{100 * r['sigma_v_error_max']:<6.1f} "
               f"{100 * r['sigma_h_error_rms']:6.1f}/{100 * r['sigma_h_error_max']:<6.1f} {r['k_mean']:6.3f} {r['porosity_interior']:6.3f} "

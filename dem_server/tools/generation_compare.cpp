@@ -32,8 +32,8 @@
 // then stop it, and the body still ends at the ratio; see the doc). --porosity: the conventional
 // expansion's target (default the PCRM body's porosity; in rigid walls that
 // jams, see the doc). --pcrm-only: the PCRM route alone.
-// --require-equilibrium: exit 1 unless both routes reached the ratio and
-// their profile errors are finite (the smoke test).
+// --require-equilibrium: exit 1 unless both routes' final bodies reached the
+// ratio and their profile errors are finite.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -324,7 +324,10 @@ int main(int argc, char** argv) try {
   conv_out["route"] = "conventional";
   conv_out["target_porosity"] = spec.particles.porosity;
   conv_out["dt_s"] = conventional.dt;
-  conv_out["reached"] = conventional.relaxation.reached && conventional.settling.reached && conventional.bonded_settling.reached;
+  // reached: the final body is at the ratio (the settling before bonding may
+  // stop at its own cap, --unbonded-max-steps; settled_before_bonding says).
+  conv_out["reached"] = conventional.relaxation.reached && conventional.bonded_settling.reached;
+  conv_out["settled_before_bonding"] = conventional.settling.reached;
   conv_out["ratio_before_bonding"] = conventional.settling.ratio;
   conv_out["lid_pressure_pa"] = conventional.lid_pressure;
   conv_out["relaxed_lid_pressure_pa"] = conventional.relaxed_lid_pressure;
@@ -336,7 +339,7 @@ int main(int argc, char** argv) try {
   conv_out["cpu_seconds"] = conventional_cpu_seconds;
   conv_out["steps"] = conventional.expansion.steps + conventional.relaxation.steps + conventional.settling.steps + conventional.bonded_settling.steps;
   std::cout << conv_out.dump() << std::endl;
-  ok = ok && conventional.relaxation.reached && conventional.settling.reached && conventional.bonded_settling.reached && finite_errors(conv_out);
+  ok = ok && conventional.relaxation.reached && conventional.bonded_settling.reached && finite_errors(conv_out);
   return o.require_equilibrium && !ok ? 1 : 0;
 } catch (const std::exception& e) {
   std::cerr << "generation_compare: " << e.what() << "\n";
