@@ -17,13 +17,6 @@
 namespace dfc::dem {
 namespace {
 
-ContactLawSetting chalk() {
-  // Ciantia et al. (2024) Table 1 (docs/references.md): E*, kappa*, strengths, u_c and theta_c (u_c, bond gap at S = 10).
-  return make_contact_law({{"law", "damage_bond"}, {"emod_pa", 1.7e9}, {"kratio", 5}, {"friction", 0.5}, {"bond_emod_pa", 1.7e9},
-                           {"bond_kratio", 5}, {"ten_pa", 1e6}, {"com_pa", 5e7}, {"coh_pa", 2e6}, {"ucn_m", 2e-4}, {"ucs_m", 2e-4},
-                           {"theta_c_rad", 0.006}, {"bond_gap_m", 2.62e-4}});
-}
-
 /// The chalk PSD at S = 10 with the REV's expansion schedule.
 RadiusExpansionSpec chalk_radii(double porosity) {
   return {.radius_min = 3.275e-4, .radius_max = 9.025e-4, .porosity = porosity, .multiplier = 1.6, .stages = 10, .relax_steps = 300, .seed = 5};
@@ -55,7 +48,7 @@ TEST(Settling, ChecksEveryIntervalAfterTheMinimumAndStopsAtTheCap) {
   // One sphere in free fall has no contacts: its ratio reads 1 (measurements.hpp)
   // and never reaches the target, so the run ends at the cap, and the checks
   // fall on steps 20, 30, 40 and 50 (every 10, from the minimum of 20).
-  Simulation sim(SimulationSettings{.particle_law = chalk(), .gravity = {0.0, 0.0, -981.0}, .local_damping = 0.7, .skin = 0.0, .threads = 1});
+  Simulation sim(SimulationSettings{.particle_law = test::chalk_at_s10(), .gravity = {0.0, 0.0, -981.0}, .local_damping = 0.7, .skin = 0.0, .threads = 1});
   sim.add_sphere(0, {}, 1e-3, 2556);
   std::vector<std::int64_t> checked;
   SettlingTarget target{.unbalanced_force_ratio = 0.002, .check_every = 10, .min_steps = 20, .max_steps = 50, .on_check = {}};
@@ -75,7 +68,7 @@ TEST(ConventionalGeneration, ABoxIsExpandedRelaxedSettledAtNgAndBondedToTheRatio
   // walls, the lid added by the route.
   const double side = 0.008, height = 0.008;
   BedRegion region{.shape = BedRegion::Shape::box, .min = {}, .max = {side, side, height}};
-  const ContactLawSetting law = chalk();
+  const ContactLawSetting law = test::chalk_at_s10();
   std::vector<Wall> walls;
   const auto plane = [&](const char* name, Vec3 point, Vec3 normal) {
     walls.push_back(make_wall(name, make_plane_mesh(point, normal, side), WallMotion::prescribed, law));

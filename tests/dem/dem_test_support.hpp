@@ -16,6 +16,14 @@ inline ContactLawSetting linear(double kn, double ks, double friction = 0.5, dou
   return make_contact_law({{"law", "linear"}, {"kn_n_m", kn}, {"ks_n_m", ks}, {"friction", friction}, {"damping_ratio_normal", damping_ratio}});
 }
 
+/// The damage-bond chalk of Ciantia et al. (2024) Table 1 (docs/references.md):
+/// E*, kappa*, strengths, u_c and theta_c; u_c and the bond gap at S = 10.
+inline ContactLawSetting chalk_at_s10() {
+  return make_contact_law({{"law", "damage_bond"}, {"emod_pa", 1.7e9}, {"kratio", 5}, {"friction", 0.5}, {"bond_emod_pa", 1.7e9},
+                           {"bond_kratio", 5}, {"ten_pa", 1e6}, {"com_pa", 5e7}, {"coh_pa", 2e6}, {"ucn_m", 2e-4}, {"ucs_m", 2e-4},
+                           {"theta_c_rad", 0.006}, {"bond_gap_m", 2.62e-4}});
+}
+
 /// A simulation without gravity or local damping: the pure contact mechanics.
 inline Simulation undamped(const ContactLawSetting& law, int threads = 1) {
   return Simulation(SimulationSettings{.particle_law = law, .gravity = {}, .local_damping = 0.0, .skin = 0.0, .threads = threads});

@@ -17,15 +17,8 @@
 namespace dfc::dem {
 namespace {
 
-ContactLawSetting chalk() {
-  // Ciantia et al. (2024) Table 1 (docs/references.md): E*, kappa*, strengths, u_c and theta_c (u_c, bond gap at S = 10).
-  return make_contact_law({{"law", "damage_bond"}, {"emod_pa", 1.7e9}, {"kratio", 5}, {"friction", 0.5}, {"bond_emod_pa", 1.7e9},
-                           {"bond_kratio", 5}, {"ten_pa", 1e6}, {"com_pa", 5e7}, {"coh_pa", 2e6}, {"ucn_m", 2e-4}, {"ucs_m", 2e-4},
-                           {"theta_c_rad", 0.006}, {"bond_gap_m", 2.62e-4}});
-}
-
 SimulationSettings settings() {
-  return SimulationSettings{.particle_law = chalk(), .gravity = {}, .local_damping = 0.7, .skin = 0.0, .threads = 1};
+  return SimulationSettings{.particle_law = test::chalk_at_s10(), .gravity = {}, .local_damping = 0.7, .skin = 0.0, .threads = 1};
 }
 
 /// About 250 spheres of the chalk PSD at S = 10 in an 8 mm cell, at 100 kPa on
@@ -141,7 +134,7 @@ void expect_scaling_scales_the_load(const ContactLawSetting& setting) {
 }
 
 TEST(StressScaling, ScalingADamageBondsHistoryScalesItsForceAndCouple) {
-  expect_scaling_scales_the_load<DamageBondLaw>(chalk());
+  expect_scaling_scales_the_load<DamageBondLaw>(test::chalk_at_s10());
 }
 
 TEST(StressScaling, ScalingASoftBondsHistoryScalesItsForceAndCouple) {
@@ -152,7 +145,7 @@ TEST(StressScaling, ScalingASoftBondsHistoryScalesItsForceAndCouple) {
 
 TEST(StressScaling, LawsWithAnOverlapTermCannotBeScaled) {
   EXPECT_FALSE(test::linear(1e5, 5e4, 0.5, 0.2).intact_force_from_history());
-  EXPECT_TRUE(chalk().intact_force_from_history());
+  EXPECT_TRUE(test::chalk_at_s10().intact_force_from_history());
 }
 
 }  // namespace
@@ -182,8 +175,8 @@ TEST(PcrmZones, TheRevScaledToAnotherSIsTheSameStateAtAnotherSize) {
   // strengths fixed) a damaged, yielding bond must then carry s^2 times the
   // force and s^3 times the couple, at the same damage: the same stresses.
   const double s0 = 2.1, s = 4.8 / 2.1, r = 0.116e-3 * s0 / 2.0;
-  const auto& law0 = std::get<DamageBondLaw>(upscale(chalk(), s0).law);
-  const auto& law1 = std::get<DamageBondLaw>(upscale(chalk(), s0 * s).law);
+  const auto& law0 = std::get<DamageBondLaw>(upscale(test::chalk_at_s10(), s0).law);
+  const auto& law1 = std::get<DamageBondLaw>(upscale(test::chalk_at_s10(), s0 * s).law);
   std::vector<double> h(DamageBondLaw::history_size, 0.0);
   set_bond_state(h.data(), BondState::intact);
   // Shear and a little opening at 1 cm/s until the bond has yielded and lost 5 % or more of its stiffness.
@@ -199,7 +192,7 @@ TEST(PcrmZones, TheRevScaledToAnotherSIsTheSameStateAtAnotherSize) {
   one.pairs = {RevPair{0, 1, {0, 0, 0}}};
   one.rows = h;
   one.cell = {.lo = {}, .hi = {4.0 * r, 4.0 * r, 4.0 * r}, .periodic = {true, true, true}, .strain_rate = {}};
-  const PreparedRev scaled = scaled_rev(one, s, upscale(chalk(), s0).info->history);
+  const PreparedRev scaled = scaled_rev(one, s, upscale(test::chalk_at_s10(), s0).info->history);
   EXPECT_DOUBLE_EQ(scaled.spheres[1].centre.z, 2.0 * r * s);
   EXPECT_DOUBLE_EQ(scaled.cell.hi.x, 4.0 * r * s);
   std::vector<double> after_row = scaled.rows;
@@ -218,7 +211,7 @@ TEST(PcrmZones, EachZoneIsFilledAtItsScaleAndTheSeamsOverlapLittle) {
   const BedRegion fine_region{.shape = BedRegion::Shape::box, .min = {}, .max = {16e-3, 16e-3, 16e-3}};
   const std::vector<PcrmZone> zones{{10.0, fine_region}, {20.0, std::nullopt}};
   const double seam = 0.1;
-  const ZonedBody zoned = replicate_zones(r, chalk().info->history, body_region, zones, 0.0, seam);
+  const ZonedBody zoned = replicate_zones(r, test::chalk_at_s10().info->history, body_region, zones, 0.0, seam);
   const ReplicatedBody& b = zoned.body;
   ASSERT_EQ(zoned.zone_spheres.size(), 2u);
   EXPECT_EQ(zoned.zone_spheres[0] + zoned.zone_spheres[1], b.spheres.size());
@@ -254,7 +247,7 @@ TEST(PcrmZones, EachZoneIsFilledAtItsScaleAndTheSeamsOverlapLittle) {
   EXPECT_GE(seam_pairs, zoned.seam_seated);
   // Every pair of the body joins spheres of one zone, and a coarse pair's row
   // is an REV row scaled by 2 (exactly: a power of 2) by its columns' units.
-  const auto& columns = chalk().info->history;
+  const auto& columns = test::chalk_at_s10().info->history;
   std::size_t coarse_pairs = 0;
   for (std::size_t k = 0; k < b.pairs.size(); ++k) {
     const auto [i, j] = b.pairs[k];
