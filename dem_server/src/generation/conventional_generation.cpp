@@ -77,7 +77,8 @@ ConventionalBody generate_conventionally(const ConventionalSpec& spec, const Sim
                                             spec.settling.check_every, spec.relaxation_max_steps);
   out.relaxed_lid_pressure = closed.walls().back().force.z / top_area;
 
-  // 3. The lid off, N g on: the packing and its pair history in a simulation with gravity.
+  // 3. The lid off, N g on: the packing (positions, radii and pair history;
+  // the velocities left behind, at rest) in a simulation with gravity.
   SimulationSettings loaded = settings;
   loaded.install_bonds_at_start = false;
   out.simulation = std::make_unique<Simulation>(loaded);

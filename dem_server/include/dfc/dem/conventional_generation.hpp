@@ -47,8 +47,8 @@ struct ConventionalSpec {
 struct GenerationStage {
   std::int64_t steps = 0;
   double seconds = 0.0;
-  bool reached = true;  ///< the settling target was met (expansion: always)
-  double ratio = 0.0;   ///< unbalanced-force ratio at the end
+  bool reached = true;  ///< the stage's target was met (the ratio; the relaxation: its lid pressure; expansion: always)
+  double ratio = 0.0;   ///< unbalanced-force ratio at the end (the relaxation's: not measured, 0)
 };
 
 struct ConventionalBody {
