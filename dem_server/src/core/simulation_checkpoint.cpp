@@ -232,6 +232,7 @@ struct SimulationLayout {
   std::int64_t step_;
   std::size_t rebuilds_;
   bool stale_, bonds_installed_, install_requested_, join_materials_requested_;
+  SeamBalanceReport seam_report_;
   std::optional<HistoryArchive> seeded_pairs_;
   std::optional<PeriodicCell> cell_;
   double affine_approach_;
@@ -278,6 +279,7 @@ void Simulation::save_state(StateWriter& out) const {
   out.value(bonds_installed_);
   out.value(install_requested_);
   out.value(join_materials_requested_);
+  out.value(seam_report_);
   write_archive(out, seeded_pairs_);
   out.optional(cell_);
   out.value(affine_approach_);
@@ -336,6 +338,7 @@ void Simulation::load_state(StateReader& in) {
   in.value(bonds_installed_);
   in.value(install_requested_);
   in.value(join_materials_requested_);
+  in.value(seam_report_);
   read_archive(in, seeded_pairs_);
   in.optional(cell_);
   in.value(affine_approach_);
