@@ -157,6 +157,13 @@ class Simulation {
   void load_state(StateReader& in);
 
  private:
+  /// save_state and load_state: one field list for both directions
+  /// (Self = const Simulation writes, Simulation reads).
+  template <class Archive, class Self>
+  static void transfer_state(Archive& a, Self& s);
+  /// load_state's checks of the pair lists it read against this model.
+  void check_pair_state(const StateReader& in) const;
+
   void rebuild();
   /// Appends the pairs of `archive` with a bond (ever) that the search did not find.
   void append_persistent_pairs(const HistoryArchive& archive);
