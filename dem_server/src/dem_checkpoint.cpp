@@ -11,7 +11,7 @@
 namespace dfc::dem {
 
 namespace {
-constexpr std::uint32_t kLayoutVersion = 2;  ///< raise when the stored members change
+constexpr std::uint32_t kLayoutVersion = 3;  ///< raise when the stored members change
 }  // namespace
 
 std::string DemBackend::checkpoint_state() {

@@ -66,8 +66,12 @@ nlohmann::json FdmBackend::configure(const nlohmann::json& section) {
   if (coupling.role == CouplingRole::driven) info["capabilities"].push_back(protocol::capability::accepts_interface);
   info["capabilities"].push_back(protocol::capability::snapshot);
   info["capabilities"].push_back(protocol::capability::checkpoint);
-  // Its monitors are exactly the ones SPEC.md §6.3 defines for every server.
-  info[protocol::monitor_units_key] = protocol::shared_monitor_units();
+  // The monitors SPEC.md §6.3 defines for every server, and the grid's
+  // support reaction and weight (the whole-model weight balance).
+  nlohmann::json units = protocol::shared_monitor_units();
+  units["support_reaction_n"] = protocol::unit::newton;
+  units["total_weight_n"] = protocol::unit::newton;
+  info[protocol::monitor_units_key] = units;
   return info;
 }
 
@@ -201,7 +205,9 @@ nlohmann::json FdmBackend::monitors() {
   const Solver& s = solver();
   nlohmann::json m = {{"unbalanced_force_ratio", s.unbalanced_force_ratio()},
                       {"kinetic_energy_j", s.kinetic_energy()},
-                      {"step", s.step_count()}};
+                      {"step", s.step_count()},
+                      {"support_reaction_n", to_json(s.support_reaction())},
+                      {"total_weight_n", s.total_body_force().norm()}};
   if (model_->coupling.role == CouplingRole::provider) {
     m["interface_force_received"] = to_json(interface_force_sum_);
     m["interface_power_w"] = interface_power_;

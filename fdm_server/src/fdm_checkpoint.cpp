@@ -8,7 +8,7 @@
 namespace dfc::fdm {
 
 namespace {
-constexpr std::uint32_t kLayoutVersion = 1;  ///< raise when the stored members change
+constexpr std::uint32_t kLayoutVersion = 2;  ///< raise when the stored members change
 }  // namespace
 
 std::string FdmBackend::checkpoint_state() {

@@ -79,6 +79,7 @@ Solver::Solver(Mesh mesh, Material material, SolverSettings settings)
   prescribed_.assign(n_gp, 0);
   prescribed_velocity_.assign(n_gp, Vec3::Zero());
   unbalanced_magnitude_.assign(n_gp, 0.0);
+  reaction_.assign(n_gp, Vec3::Zero());
   applied_magnitude_.assign(n_gp, 0.0);
 
   stress_.assign(tetrahedra_.size(), Stress{});
@@ -236,6 +237,7 @@ void Solver::gridpoint_pass(double dt) {
     // make the free velocity chatter.
     const Vec3 free_force = prescribed_[gp] ? Vec3(Vec3::Zero()) : constrained(gp, forces.net);
     unbalanced_magnitude_[gp] = free_force.norm();  // §1.11
+    reaction_[gp] = free_force - forces.net;
     applied_magnitude_[gp] = forces.magnitude;
 
     Vec3& v = velocity_[gp];
@@ -251,7 +253,9 @@ void Solver::gridpoint_pass(double dt) {
   double unbalanced = 0.0;
   double applied = 0.0;
   double kinetic = 0.0;
+  Vec3 reaction = Vec3::Zero();
   for (std::size_t gp = 0; gp < velocity_.size(); ++gp) {
+    reaction += reaction_[gp];
     unbalanced += unbalanced_magnitude_[gp];
     applied += applied_magnitude_[gp];
     kinetic += 0.5 * real_mass_[gp] * velocity_[gp].squaredNorm();
@@ -262,6 +266,13 @@ void Solver::gridpoint_pass(double dt) {
   // reference's inference; FLAC3D's exact definition is not documented).
   unbalanced_force_ratio_ = applied > 0.0 ? unbalanced / applied : 0.0;
   kinetic_energy_ = kinetic;
+  support_reaction_ = reaction;
+}
+
+Vec3 Solver::total_body_force() const {
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& f : body_force_) sum += f;
+  return sum;
 }
 
 void Solver::zone_pass(double dt) {

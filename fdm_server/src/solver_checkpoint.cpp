@@ -35,6 +35,8 @@ struct SolverLayout {
   std::vector<double> model_state_;
   std::vector<std::array<Vec3, 4>> tet_force_;
   std::vector<double> unbalanced_magnitude_, applied_magnitude_;
+  std::vector<Vec3> reaction_;
+  Vec3 support_reaction_;
   double unbalanced_force_ratio_, kinetic_energy_;
   std::int64_t step_count_;
 };
@@ -63,6 +65,7 @@ void Solver::save_state(StateWriter& out) const {
   out.vector(tet_force_);
   out.value(unbalanced_force_ratio_);
   out.value(kinetic_energy_);
+  out.value(support_reaction_);
   out.value(step_count_);
 }
 
@@ -91,6 +94,7 @@ void Solver::load_state(StateReader& in) {
   in.vector(tet_force_);
   in.value(unbalanced_force_ratio_);
   in.value(kinetic_energy_);
+  in.value(support_reaction_);
   in.value(step_count_);
   for (const std::size_t size : {extra_mass_.size(), velocity_.size(), displacement_.size(), face_load_.size(), external_force_.size(),
                                  fixed_.size(), radial_roller_.size(), prescribed_.size(), prescribed_velocity_.size()})

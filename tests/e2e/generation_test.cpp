@@ -122,6 +122,24 @@ TEST(Generation, TheFloorAndTheCouplingWallCarryTheBodysWeight) {
   EXPECT_NEAR(on_floor + on_wall, weight, 0.005 * weight);
 }
 
+TEST(Generation, TheWholeCoupledModelsWeightRestsOnItsSupports) {
+  // The whole-model weight balance: the DEM body's and the FDM
+  // grid's weight rest on the DEM floor and the FDM's fixed and roller
+  // supports (the interface forces are internal to the coupled model and
+  // cancel). Within 0.5 %, the criterion; the rest is both sides'
+  // rate of change of momentum, bounded by the stop at a ratio of 0.002.
+  const GenerationRun& run = small_run();
+  const h5::File file = h5::File::open_read_only(run.results);
+  const auto floor = h5::read_f64(file, "/timeseries/dem_wall_floor_force_n");                 // [rows, 3]
+  const auto support = h5::read_f64(file, "/timeseries/continuum_support_reaction_n");        // [rows, 3]
+  const double weight = series(run.results, "dem_total_weight_n").back() + series(run.results, "continuum_total_weight_n").back();
+  const double carried = -floor[floor.size() - 1] + support[support.size() - 1];
+  std::cout << "coupled model: weight " << weight << " N, DEM floor " << -floor[floor.size() - 1] << " N + FDM supports "
+            << support[support.size() - 1] << " N (" << 100.0 * (carried / weight - 1.0) << " %)\n";
+  EXPECT_GT(support[support.size() - 1], 0.5 * weight);  // the FDM annulus is most of the model's mass
+  EXPECT_NEAR(carried, weight, 0.005 * weight);
+}
+
 TEST(Generation, DemAndFdmAgreeAtEachDepth) {
   // The FDM starts geostatic (sigma_v = rho g z, sigma_h = K0 sigma_v) with the
   // DEM's bulk density; after the equilibration both sides must still carry

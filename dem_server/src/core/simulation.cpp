@@ -265,10 +265,7 @@ void Simulation::install_bonds(bool across_materials_only) {
     // the gap allows bonding_round_off (r_i + r_j) on top of bond_gap_m.
     if (surface_gap <= gap + bonding_round_off * radii) set_bond_state(pairs_.row(k), BondState::intact);
   }
-  if (across_materials_only) {
-    join_materials_requested_ = false;
-    return;
-  }
+  if (across_materials_only) return;  // the flag stays until the seam balance of the next step
   bonds_installed_ = true;
   install_requested_ = false;
 }
@@ -310,6 +307,7 @@ void Simulation::step(double dt, ContactRecord record) {
     if (wall.motion == WallMotion::prescribed)
       std::fill(wall.vertex_velocity.begin(), wall.vertex_velocity.end(), step_ >= wall.start_step ? wall.prescribed_velocity : Vec3{});
 
+  if (join_materials_requested_) balance_seams(dt);
   outputs_complete_ = record == ContactRecord::complete;
   if (compute_contact_forces(dt, record)) {
     std::ostringstream msg;

@@ -81,57 +81,45 @@ static_assert(sizeof(Incidence) == sizeof(IncidenceLayout), "an Incidence field 
 
 static_assert(std::is_trivially_copyable_v<PeriodicCell>, "PeriodicCell is stored as its bytes");
 
-void write_particles(StateWriter& out, const ParticleStore& p) {
-  out.tag("particles");
-  out.vector(p.id);
-  out.vector(p.position);
-  out.vector(p.velocity);
-  out.vector(p.angular_velocity);
-  out.vector(p.force);
-  out.vector(p.moment);
-  out.vector(p.radius);
-  out.vector(p.mass);
-  out.vector(p.inertia);
-  out.vector(p.material);
+/// True when `Archive` reads (load_state), false when it writes (save_state).
+template <class Archive>
+inline constexpr bool reading = std::is_same_v<Archive, StateReader>;
+
+// One field list per stored type, serving both directions: the writer gets
+// const members, the reader mutable ones, in the same order by construction.
+// `Store` is the type, const for the writer.
+
+template <class Archive, class Store>
+void transfer_particles(Archive& a, Store& p) {
+  a.tag("particles");
+  a.vector(p.id);
+  a.vector(p.position);
+  a.vector(p.velocity);
+  a.vector(p.angular_velocity);
+  a.vector(p.force);
+  a.vector(p.moment);
+  a.vector(p.radius);
+  a.vector(p.mass);
+  a.vector(p.inertia);
+  a.vector(p.material);
 }
 
-void read_particles(StateReader& in, ParticleStore& p) {
-  in.tag("particles");
-  in.vector(p.id);
-  in.vector(p.position);
-  in.vector(p.velocity);
-  in.vector(p.angular_velocity);
-  in.vector(p.force);
-  in.vector(p.moment);
-  in.vector(p.radius);
-  in.vector(p.mass);
-  in.vector(p.inertia);
-  in.vector(p.material);
+void check_particles(const StateReader& in, const ParticleStore& p) {
   const std::size_t n = p.id.size();
   for (const std::size_t size : {p.position.size(), p.velocity.size(), p.angular_velocity.size(), p.force.size(), p.moment.size(),
                                  p.radius.size(), p.mass.size(), p.inertia.size(), p.material.size()})
     if (size != n) in.fail("particle arrays of " + std::to_string(n) + " entries each");
 }
 
-/// The running state of a wall; its name, motion kind, law and facets are the model's and are checked.
-void write_wall(StateWriter& out, const Wall& w) {
-  out.tag("wall");
+/// A wall's name, motion kind and facets are the model's: written, and on
+/// reading compared with the configured wall's.
+void transfer_wall_identity(StateWriter& out, const Wall& w) {
   out.string(w.name);
   out.value(w.motion);
   out.vector(w.facets);
-  out.value(w.prescribed_velocity);
-  out.value(w.start_step);
-  out.vector(w.vertices);
-  out.vector(w.vertex_velocity);
-  out.vector(w.vertex_force);
-  out.value(w.force);
-  out.value(w.moment);
-  out.value(w.force_on_particles);
-  out.vector(w.facet_force);
 }
 
-void read_wall(StateReader& in, Wall& w) {
-  in.tag("wall");
+void transfer_wall_identity(StateReader& in, const Wall& w) {
   const std::string name = in.string();
   const auto motion = in.value<WallMotion>();
   std::vector<Facet> facets;
@@ -139,46 +127,42 @@ void read_wall(StateReader& in, Wall& w) {
   if (name != w.name || motion != w.motion || facets != w.facets)
     in.fail("wall \"" + w.name + "\" with its " + std::to_string(w.facets.size()) + " facets (the checkpoint has wall \"" + name + "\" with " +
             std::to_string(facets.size()) + "): the model's walls differ from the saved run's");
-  in.value(w.prescribed_velocity);
-  in.value(w.start_step);
-  const std::size_t vertices = w.vertices.size();
-  in.vector(w.vertices);
-  in.vector(w.vertex_velocity);
-  in.vector(w.vertex_force);
-  if (w.vertices.size() != vertices || w.vertex_velocity.size() != vertices || w.vertex_force.size() != vertices)
-    in.fail("wall \"" + w.name + "\" with " + std::to_string(vertices) + " vertices");
-  in.value(w.force);
-  in.value(w.moment);
-  in.value(w.force_on_particles);
-  const std::size_t facet_forces = w.facet_force.size();
-  in.vector(w.facet_force);
-  if (w.facet_force.size() != facet_forces) in.fail("wall \"" + w.name + "\" with " + std::to_string(facet_forces) + " facet forces");
 }
 
-void write_wall_contacts(StateWriter& out, const WallContacts& c) {
-  out.tag("wall contacts");
-  out.vector(c.particle);
-  out.vector(c.facet);
-  out.vector(c.group_start);
-  out.value(c.stride);
-  out.vector(c.history);
-  out.vector(c.weights);
-  out.vector(c.distance);
-  out.vector(c.feature);
-  out.vector(c.selected);
+/// The running state of a wall.
+template <class Archive, class Store>
+void transfer_wall(Archive& a, Store& w) {
+  a.tag("wall");
+  transfer_wall_identity(a, w);
+  const std::size_t vertices = w.vertices.size(), facet_forces = w.facet_force.size();
+  a.value(w.prescribed_velocity);
+  a.value(w.start_step);
+  a.vector(w.vertices);
+  a.vector(w.vertex_velocity);
+  a.vector(w.vertex_force);
+  a.value(w.force);
+  a.value(w.moment);
+  a.value(w.force_on_particles);
+  a.vector(w.facet_force);
+  if constexpr (reading<Archive>) {
+    if (w.vertices.size() != vertices || w.vertex_velocity.size() != vertices || w.vertex_force.size() != vertices)
+      a.fail("wall \"" + w.name + "\" with " + std::to_string(vertices) + " vertices");
+    if (w.facet_force.size() != facet_forces) a.fail("wall \"" + w.name + "\" with " + std::to_string(facet_forces) + " facet forces");
+  }
 }
 
-void read_wall_contacts(StateReader& in, WallContacts& c) {
-  in.tag("wall contacts");
-  in.vector(c.particle);
-  in.vector(c.facet);
-  in.vector(c.group_start);
-  in.value(c.stride);
-  in.vector(c.history);
-  in.vector(c.weights);
-  in.vector(c.distance);
-  in.vector(c.feature);
-  in.vector(c.selected);
+template <class Archive, class Store>
+void transfer_wall_contacts(Archive& a, Store& c) {
+  a.tag("wall contacts");
+  a.vector(c.particle);
+  a.vector(c.facet);
+  a.vector(c.group_start);
+  a.value(c.stride);
+  a.vector(c.history);
+  a.vector(c.weights);
+  a.vector(c.distance);
+  a.vector(c.feature);
+  a.vector(c.selected);
 }
 
 void write_archive(StateWriter& out, const std::optional<HistoryArchive>& archive) {
@@ -232,113 +216,87 @@ struct SimulationLayout {
   std::int64_t step_;
   std::size_t rebuilds_;
   bool stale_, bonds_installed_, install_requested_, join_materials_requested_;
+  SeamBalanceReport seam_report_;
   std::optional<HistoryArchive> seeded_pairs_;
   std::optional<PeriodicCell> cell_;
   double affine_approach_;
 };
 static_assert(sizeof(Simulation) == sizeof(SimulationLayout), "a Simulation member is missing from Simulation::save_state");
 
-void Simulation::save_state(StateWriter& out) const {
-  out.tag("simulation");
-  out.value(skin_);
-  out.value(r_max_);
-  write_particles(out, particles_);
-  out.value(walls_.size());
-  for (const Wall& w : walls_) write_wall(out, w);
-  out.tag("pairs");
-  out.vector(pairs_.first);
-  out.vector(pairs_.second);
-  out.value(pairs_.stride);
-  out.vector(pairs_.history);
-  out.value(pairs_.constants_stride);
-  out.vector(pairs_.constants);
-  out.vector(pairs_.law_index);
-  for (const WallContacts& c : wall_contacts_) write_wall_contacts(out, c);
-  out.vector(wall_offsets_);
-  out.tag("outputs");
-  out.vector(outputs_.force);
-  out.vector(outputs_.point);
-  out.vector(outputs_.couple);
-  out.vector(outputs_.shift);
-  out.value(outputs_complete_);
-  out.tag("incidence");
-  out.vector(incidence_.start);
-  out.vector(incidence_.entry);
-  out.vector(incidence_.chunk_start);
-  out.vector(incidence_.gather_from);
-  out.vector(incidence_.direct);
-  out.tag("verlet");
-  out.vector(reference_positions_);
-  out.value(reference_vertices_.size());
-  for (const auto& vertices : reference_vertices_) out.vector(vertices);
-  out.value(max_wall_displacement_);
-  out.value(step_);
-  out.value(rebuilds_);
-  out.value(stale_);
-  out.value(bonds_installed_);
-  out.value(install_requested_);
-  out.value(join_materials_requested_);
-  write_archive(out, seeded_pairs_);
-  out.optional(cell_);
-  out.value(affine_approach_);
+template <class Archive, class Self>
+void Simulation::transfer_state(Archive& a, Self& s) {
+  a.tag("simulation");
+  a.value(s.skin_);
+  a.value(s.r_max_);
+  transfer_particles(a, s.particles_);
+  std::size_t walls = s.walls_.size();
+  a.value(walls);
+  if constexpr (reading<Archive>) {
+    s.ids_ = std::unordered_set<std::int64_t>(s.particles_.id.begin(), s.particles_.id.end());
+    if (s.ids_.size() != s.particles_.size()) a.fail("unique particle ids");
+    check_particles(a, s.particles_);
+    if (walls != s.walls_.size())
+      a.fail(std::to_string(s.walls_.size()) + " walls as this model has (the checkpoint has " + std::to_string(walls) +
+             "; a coupling wall comes with set_interface, before restore)");
+  }
+  for (auto& w : s.walls_) transfer_wall(a, w);
+  a.tag("pairs");
+  a.vector(s.pairs_.first);
+  a.vector(s.pairs_.second);
+  a.value(s.pairs_.stride);
+  a.vector(s.pairs_.history);
+  a.value(s.pairs_.constants_stride);
+  a.vector(s.pairs_.constants);
+  a.vector(s.pairs_.law_index);
+  if constexpr (reading<Archive>) s.check_pair_state(a);
+  for (auto& c : s.wall_contacts_) transfer_wall_contacts(a, c);
+  a.vector(s.wall_offsets_);
+  a.tag("outputs");
+  a.vector(s.outputs_.force);
+  a.vector(s.outputs_.point);
+  a.vector(s.outputs_.couple);
+  a.vector(s.outputs_.shift);
+  a.value(s.outputs_complete_);
+  a.tag("incidence");
+  a.vector(s.incidence_.start);
+  a.vector(s.incidence_.entry);
+  a.vector(s.incidence_.chunk_start);
+  a.vector(s.incidence_.gather_from);
+  a.vector(s.incidence_.direct);
+  a.tag("verlet");
+  a.vector(s.reference_positions_);
+  std::size_t references = s.reference_vertices_.size();
+  a.value(references);
+  if constexpr (reading<Archive>) {
+    if (references != 0 && references != s.walls_.size()) a.fail("the Verlet references of every wall");
+    s.reference_vertices_.resize(references);  // none before the first rebuild
+  }
+  for (auto& vertices : s.reference_vertices_) a.vector(vertices);
+  a.value(s.max_wall_displacement_);
+  a.value(s.step_);
+  a.value(s.rebuilds_);
+  a.value(s.stale_);
+  a.value(s.bonds_installed_);
+  a.value(s.install_requested_);
+  a.value(s.join_materials_requested_);
+  a.value(s.seam_report_);
+  if constexpr (reading<Archive>) read_archive(a, s.seeded_pairs_);
+  else write_archive(a, s.seeded_pairs_);
+  a.optional(s.cell_);
+  a.value(s.affine_approach_);
 }
 
-void Simulation::load_state(StateReader& in) {
-  in.tag("simulation");
-  in.value(skin_);
-  in.value(r_max_);
-  read_particles(in, particles_);
-  ids_ = std::unordered_set<std::int64_t>(particles_.id.begin(), particles_.id.end());
-  if (ids_.size() != particles_.size()) in.fail("unique particle ids");
-  const auto walls = in.value<std::size_t>();
-  if (walls != walls_.size())
-    in.fail(std::to_string(walls_.size()) + " walls as this model has (the checkpoint has " + std::to_string(walls) +
-            "; a coupling wall comes with set_interface, before restore)");
-  for (Wall& w : walls_) read_wall(in, w);
-  in.tag("pairs");
-  in.vector(pairs_.first);
-  in.vector(pairs_.second);
-  in.value(pairs_.stride);
-  in.vector(pairs_.history);
-  in.value(pairs_.constants_stride);
-  in.vector(pairs_.constants);
-  in.vector(pairs_.law_index);
+void Simulation::check_pair_state(const StateReader& in) const {
   if (!pairs_.law_index.empty() && pairs_.law_index.size() != pairs_.first.size()) in.fail("a pair law index per pair contact");
   for (const std::uint16_t index : pairs_.law_index)
     if (index >= materials_.count() * materials_.count()) in.fail("pair law indices of this model's " + std::to_string(materials_.count()) + " materials");
   for (const std::uint16_t m : particles_.material)
     if (m >= materials_.count()) in.fail("particle materials of this model's " + std::to_string(materials_.count()) + " materials");
   if (pairs_.stride != settings_.particle_law.history_size()) in.fail("pair history rows of the particle law's width");
-  for (WallContacts& c : wall_contacts_) read_wall_contacts(in, c);
-  in.vector(wall_offsets_);
-  in.tag("outputs");
-  in.vector(outputs_.force);
-  in.vector(outputs_.point);
-  in.vector(outputs_.couple);
-  in.vector(outputs_.shift);
-  in.value(outputs_complete_);
-  in.tag("incidence");
-  in.vector(incidence_.start);
-  in.vector(incidence_.entry);
-  in.vector(incidence_.chunk_start);
-  in.vector(incidence_.gather_from);
-  in.vector(incidence_.direct);
-  in.tag("verlet");
-  in.vector(reference_positions_);
-  const auto references = in.value<std::size_t>();
-  if (references != 0 && references != walls_.size()) in.fail("the Verlet references of every wall");
-  reference_vertices_.resize(references);  // none before the first rebuild
-  for (auto& vertices : reference_vertices_) in.vector(vertices);
-  in.value(max_wall_displacement_);
-  in.value(step_);
-  in.value(rebuilds_);
-  in.value(stale_);
-  in.value(bonds_installed_);
-  in.value(install_requested_);
-  in.value(join_materials_requested_);
-  read_archive(in, seeded_pairs_);
-  in.optional(cell_);
-  in.value(affine_approach_);
 }
+
+void Simulation::save_state(StateWriter& out) const { transfer_state(out, *this); }
+
+void Simulation::load_state(StateReader& in) { transfer_state(in, *this); }
 
 }  // namespace dfc::dem

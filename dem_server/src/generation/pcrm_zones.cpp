@@ -136,12 +136,16 @@ std::size_t mark_seam_overlaps(const ReplicatedBody& body, const SeamRank& rank,
 }
 
 /// Distance t >= 0 that a sphere (centre c, radius r) moves along the unit
-/// vector u before it touches the sphere `other`; infinity if it never does
-/// (or they already overlap: that pair does not limit the move).
+/// vector u before it touches the sphere `other`; infinity if it never does.
+/// A pair that already overlaps (the seam keeps overlaps up to
+/// seam_overlap_fraction) stops a move that would deepen it at once: moved
+/// freely, such a sphere was pushed half a radius into its neighbour in the
+/// three-zone paper model, and the first step failed on the overlap.
 double distance_to_touch(const Vec3& c, double r, const Vec3& u, const GeneratedSphere& other) {
   const Vec3 d = other.centre - c;
   const double reach = r + other.radius, along = dot(d, u), across2 = norm2(d) - along * along;
-  if (norm2(d) <= reach * reach || along <= 0.0 || across2 >= reach * reach) return std::numeric_limits<double>::infinity();
+  if (norm2(d) <= reach * reach) return along > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+  if (along <= 0.0 || across2 >= reach * reach) return std::numeric_limits<double>::infinity();
   return along - std::sqrt(reach * reach - across2);
 }
 

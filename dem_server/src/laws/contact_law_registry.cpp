@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "dfc/common/errors.hpp"
 
@@ -130,6 +131,19 @@ double ContactLawSetting::bond_gap() const {
     if constexpr (std::decay_t<decltype(l)>::bonded) return l.bond_gap;
     else return 0.0;
   }, law);
+}
+
+bool ContactLawSetting::can_add_bond_load() const {
+  return std::visit([](const auto& l) { return requires(double* h, const ContactKinematics& k, const Vec3& f) { l.add_bond_load(h, k, f); }; }, law);
+}
+
+void ContactLawSetting::add_bond_load(double* history, const ContactKinematics& k, const Vec3& force_on_first) const {
+  std::visit(
+      [&](const auto& l) {
+        if constexpr (requires { l.add_bond_load(history, k, force_on_first); }) l.add_bond_load(history, k, force_on_first);
+        else throw std::logic_error("contact law \"" + info->keyword + "\" cannot take a load onto a bond");
+      },
+      law);
 }
 
 ContactLawSetting read_contact_law(ConfigReader cfg) {

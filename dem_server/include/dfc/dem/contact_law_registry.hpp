@@ -77,6 +77,12 @@ struct ContactLawSetting {
   [[nodiscard]] bool intact_force_from_history() const;
   /// m, bonding gap of a bonded law (pairs with surface gap <= it are bonded at start); 0 otherwise.
   [[nodiscard]] double bond_gap() const;
+  /// True for laws that can take a load onto a bond with its matching
+  /// displacement (Law::add_bond_load; the seam balance, seam_balance.hpp).
+  [[nodiscard]] bool can_add_bond_load() const;
+  /// Law::add_bond_load on one bonded contact's history; std::logic_error for
+  /// a law without it (check can_add_bond_load first).
+  void add_bond_load(double* history, const ContactKinematics& k, const Vec3& force_on_first) const;
 };
 
 /// Reads {"law": keyword (default "linear"), <parameters>...} and finishes the

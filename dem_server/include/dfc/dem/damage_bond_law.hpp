@@ -98,6 +98,18 @@ struct DamageBondLaw {
   /// contact; returns the bond's force and couple on the first body.
   [[nodiscard]] ContactForce update_bond(const ContactKinematics& k, double* history) const noexcept;
 
+  /// Adds `force` (on the first body) to a bonded contact's load through its
+  /// elastic displacements: Δu_n = ΔN/((1-D) k̄_n A), Δu_s = ΔV/((1-D) k̄_s A)
+  /// (Eq. 1), so the bond holds a state it could have reached elastically
+  /// (seam balance, seam_balance.hpp). The envelope is checked at the next evaluation.
+  void add_bond_load(double* history, const ContactKinematics& k, const Vec3& force) const noexcept {
+    const double area = bond_section(k, radius_multiplier).area;
+    const double kn = deformability_bond_kn(k, bond_emod), ks = kn / bond_kratio, intact = 1.0 - history[damage];
+    const double normal = dot(force, k.normal);
+    history[opening] += normal / (intact * kn * area);
+    store_vec3(history + slip, load_in_plane(history + slip, k.normal, ContactTwirl::of(k)) + (1.0 / (intact * ks * area)) * (force - normal * k.normal));
+  }
+
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
     ContactForce out{};
     const BondState s = bond_state(history);

@@ -40,6 +40,7 @@
 #include "dfc/dem/particle_materials.hpp"
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/periodic_cell.hpp"
+#include "dfc/dem/seam_balance.hpp"
 #include "dfc/dem/wall.hpp"
 
 namespace dfc {
@@ -99,9 +100,13 @@ class Simulation {
   void install_bonds_now() noexcept;
   /// Bonded laws: at the next rebuild (forced now), bonds every pair of
   /// particles of different materials within their pair law's bond gap
-  /// whose history is empty, with zero load (the law's rule): the seams
-  /// between the zones of a graded generated body, whose pairs no REV held.
+  /// whose history is empty (the seams between the zones of a graded
+  /// generated body, whose pairs no REV held); then, before that step's
+  /// forces, balances the seam (seam_balance.hpp) for laws that can take a
+  /// load onto a bond. Meant for the start, when nothing moves.
   void bond_across_materials_now() noexcept;
+  /// What the last seam balance did (zero before one).
+  [[nodiscard]] const SeamBalanceReport& seam_balance_report() const noexcept { return seam_report_; }
   /// Pair history (rows of particle_law's layout, keyed by particle ids) that
   /// the next rebuild restores instead of the current lists' history: a body
   /// built from a prepared one (PCRM replication, pcrm_replication.hpp) starts
@@ -152,6 +157,13 @@ class Simulation {
   void load_state(StateReader& in);
 
  private:
+  /// save_state and load_state: one field list for both directions
+  /// (Self = const Simulation writes, Simulation reads).
+  template <class Archive, class Self>
+  static void transfer_state(Archive& a, Self& s);
+  /// load_state's checks of the pair lists it read against this model.
+  void check_pair_state(const StateReader& in) const;
+
   void rebuild();
   /// Appends the pairs of `archive` with a bond (ever) that the search did not find.
   void append_persistent_pairs(const HistoryArchive& archive);
@@ -165,6 +177,8 @@ class Simulation {
   void compute_pair_constants();
   /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
   bool compute_contact_forces(double dt, ContactRecord record);
+  /// The seam balance of bond_across_materials_now (contacts/seam_balance_step.cpp).
+  void balance_seams(double dt);
   void move_walls(double dt);
   /// m, the largest edge a pair search needs: 2 r_max + search distance.
   void check_cell_width(double reach) const;
@@ -194,6 +208,7 @@ class Simulation {
   bool bonds_installed_ = false;
   bool install_requested_ = false;
   bool join_materials_requested_ = false;
+  SeamBalanceReport seam_report_;
 
   std::optional<HistoryArchive> seeded_pairs_;  ///< seed_pair_history(), consumed by the next rebuild
 

@@ -25,6 +25,7 @@
 //    Itasca's unbonded softbond is not implemented).
 //
 // History (14): state, BondLoad (8), e, e_max, linear shear force (3).
+#include <algorithm>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -89,6 +90,21 @@ struct SoftBondLaw {
   }
 
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept;
+
+  /// Adds `force` (on the first body) to a bonded contact's stored load, its
+  /// normal part with the peripheral elongation the law's stiffness gives it
+  /// (σ = k_n e, so Δe = ΔN/(k_n A)): a state the bond could have reached by
+  /// elastic deformation (seam balance, seam_balance.hpp).
+  void add_bond_load(double* history, const ContactKinematics& k, const Vec3& force) const noexcept {
+    const BondSection s = bond_section(k, radius_multiplier);
+    BondLoad load = BondLoad::load(history + load_offset, k);
+    const double normal = dot(force, k.normal);
+    load.normal += normal;
+    load.shear += force - normal * k.normal;
+    load.store(history + load_offset);
+    history[elongation_column] += normal / (deformability_bond_kn(k, emod) * s.area);
+    history[max_elongation_column] = std::max(history[max_elongation_column], history[elongation_column]);
+  }
 };
 
 static_assert(ContactLawKernel<SoftBondLaw>);

@@ -113,6 +113,14 @@ class Solver {
   [[nodiscard]] double unbalanced_force_ratio() const { return unbalanced_force_ratio_; }
   /// ½ Σ m v² with the real masses after the last step, J.
   [[nodiscard]] double kinetic_energy() const { return kinetic_energy_; }
+  /// Force the supports exert on the grid in the last step, N: at every held
+  /// component (fixed, roller, prescribed velocity) the part of the
+  /// gridpoint's net force it cancels, reversed. With the body force and the
+  /// coupling's external forces it closes the grid's force balance (the
+  /// whole-model weight balance, docs/dem_generation.md §5).
+  [[nodiscard]] const Vec3& support_reaction() const { return support_reaction_; }
+  /// Σ ρ g V over the grid (the body forces of gravity), N.
+  [[nodiscard]] Vec3 total_body_force() const;
   [[nodiscard]] std::int64_t step_count() const { return step_count_; }
 
   // Checkpoint (solver_checkpoint.cpp) --------------------------------------
@@ -169,6 +177,8 @@ class Solver {
 
   std::vector<double> unbalanced_magnitude_;  // scratch per gridpoint, summed in fixed order
   std::vector<double> applied_magnitude_;
+  std::vector<Vec3> reaction_;  // scratch per gridpoint: the supports' force, summed in fixed order
+  Vec3 support_reaction_ = Vec3::Zero();
   double unbalanced_force_ratio_ = 0.0;
   double kinetic_energy_ = 0.0;
   std::int64_t step_count_ = 0;
