@@ -2,8 +2,11 @@
 // DEM is in equilibrium, and its force splits exactly into tip and shaft.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "dfc/dem/dem_backend.hpp"
 #include "dfc/dem/foundation_loading.hpp"
+#include "dfc/dem/pile_plug.hpp"
 #include "dfc/dem/wall_builders.hpp"
 #include "dem_test_support.hpp"
 
@@ -73,6 +76,69 @@ TEST(FoundationLoading, TipAndShaftForcesAddUpToThePileForce) {
   EXPECT_GT(std::abs(total), 0.0);
   EXPECT_NEAR(tip + shaft, total, 1e-12 * std::abs(total));
   EXPECT_GT(tip, 0.0);  // the spheres below resist the tip
+}
+
+TEST(FoundationLoading, AnOpenTubeSplitsIntoAnnulusInnerAndOuterShaft) {
+  // Ciantia et al. (2024) §3: D = 8 mm, wall 1 mm. 2 triangles per side for
+  // each part; the annulus lies in the tip plane between the two radii, the
+  // inner shaft's vertices on the bore's circle, the outer's on the outer circle.
+  const CylinderGeometry g{.tip_z = 0.02, .radius = 0.004, .length = 0.03, .sides = 16, .inner_radius = 0.003};
+  const Wall pile = make_wall("pile", make_pile_mesh(g), WallMotion::prescribed, {});
+  ASSERT_EQ(pile.facet_count(), 6u * 16u);
+  const std::vector<std::size_t> tip = pile_tip_facets(pile, {0, 0, -1});
+  const std::vector<std::size_t> inner = pile_inner_facets(pile, 0.0, 0.0);
+  const std::vector<std::size_t> outer = other_facets(pile, tip, inner);
+  ASSERT_EQ(tip.size(), 32u);
+  ASSERT_EQ(inner.size(), 32u);
+  ASSERT_EQ(outer.size(), 32u);
+  EXPECT_EQ(tip.front(), 0u);  // the annulus first: it owns both rims (wall_contacts.hpp ties)
+  for (const std::size_t f : tip)
+    for (const std::uint32_t v : pile.facets[f]) EXPECT_EQ(pile.vertices[v].z, 0.02);
+  const auto radius_of = [&](std::uint32_t v) { return std::hypot(pile.vertices[v].x, pile.vertices[v].y); };
+  for (const std::size_t f : inner)
+    for (const std::uint32_t v : pile.facets[f]) EXPECT_NEAR(radius_of(v), 0.003, 1e-15);
+  for (const std::size_t f : outer)
+    for (const std::uint32_t v : pile.facets[f]) EXPECT_NEAR(radius_of(v), 0.004, 1e-15);
+  // A closed pile has no inner shaft.
+  const Wall closed = make_wall("pile", make_pile_mesh({.radius = 0.004, .length = 0.03}), WallMotion::prescribed, {});
+  EXPECT_TRUE(pile_inner_facets(closed, 0.0, 0.0).empty());
+}
+
+TEST(FoundationLoading, AnOpenTubeCarriesSoilInItsBoreAndSplitsItsForceExactly) {
+  // The tube (r 8 mm, wall 2 mm) is pushed into the falling bed from its
+  // middle: the spheres in its bore stay (inside_pile removes only those in
+  // its wall), so the column above the tip is as tall as the bed there, and
+  // annulus + inner + outer = the total (the same contacts grouped by facet).
+  nlohmann::json config = falling_bed();
+  config["pile"] = {{"radius_m", 0.012}, {"wall_thickness_m", 0.002}, {"tip_z_m", 0.009}, {"length_m", 0.05},
+                    {"velocity_m_s", {0, 0, -0.5}}, {"sides", 32}};
+  DemBackend backend;
+  const double dt = backend.configure(config)["dt_suggested"];
+  const nlohmann::json m = backend.advance(steps(700, dt)).monitors;
+  const double total = m["pile_force_n"], tip = m["pile_tip_force_n"];
+  const double inner = m["pile_inner_shaft_force_n"], outer = m["pile_outer_shaft_force_n"];
+  EXPECT_GT(std::abs(total), 0.0);
+  // Two summation orders of the same contact forces: equal to a few roundings.
+  EXPECT_NEAR(tip + inner + outer, total, 1e-12 * (std::abs(tip) + std::abs(inner) + std::abs(outer)));
+  EXPECT_NEAR(m["pile_shaft_force_n"].get<double>(), inner + outer, 1e-12 * (std::abs(inner) + std::abs(outer) + std::abs(total)));
+  EXPECT_GT(m["pile_plug_particles"].get<double>(), 0.0);
+  EXPECT_GT(m["pile_plug_length_m"].get<double>(), 0.0);
+}
+
+TEST(FoundationLoading, ThePlugColumnIsTheTopOfTheSoilInTheBore) {
+  // 200 spheres of radius 1 mm stacked on the axis from z = 0.5 mm to 199.5 mm
+  // above a tip at z = 0, one far outside the bore: the column's top is the
+  // particle top at rank floor(0.01 x 200) = 2 from the top (the third
+  // highest), so 2 stray spheres thrown up the tube do not count.
+  ParticleStore p;
+  for (int k = 0; k < 200; ++k) p.add_sphere(k, {0.0, 0.0, 0.0005 + 0.001 * k}, 0.001, 1.0);
+  p.add_sphere(200, {0.1, 0.0, 0.05}, 0.001, 1.0);  // outside the bore
+  const CylinderGeometry tube{.radius = 0.004, .length = 0.3, .inner_radius = 0.003};
+  const PlugColumn column = plug_column(p, tube, 0.0);
+  EXPECT_EQ(column.particles, 200);
+  EXPECT_NEAR(column.length, 0.0005 + 0.001 * 197 + 0.001, 1e-15);
+  EXPECT_EQ(plug_column(p, tube, 0.3).particles, 0);  // a tip above everything: no column
+  EXPECT_EQ(plug_column(p, tube, 0.3).length, 0.0);
 }
 
 }  // namespace
