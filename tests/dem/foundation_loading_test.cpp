@@ -126,17 +126,21 @@ TEST(FoundationLoading, AnOpenTubeCarriesSoilInItsBoreAndSplitsItsForceExactly) 
 }
 
 TEST(FoundationLoading, ThePlugColumnIsTheTopOfTheSoilInTheBore) {
-  // 200 spheres of radius 1 mm stacked on the axis from z = 0.5 mm to 199.5 mm
-  // above a tip at z = 0, one far outside the bore: the column's top is the
-  // particle top at rank floor(0.01 x 200) = 2 from the top (the third
-  // highest), so 2 stray spheres thrown up the tube do not count.
+  // 20 spheres of radius 1 mm stacked on the axis, touching, from z = 1 mm
+  // to 39 mm above a tip at z = 0; two thrown up the tube, 5 mm apart (more
+  // than a diameter) above the stack; one far outside the bore. The column's
+  // top is the stack's top, 40 mm.
   ParticleStore p;
-  for (int k = 0; k < 200; ++k) p.add_sphere(k, {0.0, 0.0, 0.0005 + 0.001 * k}, 0.001, 1.0);
-  p.add_sphere(200, {0.1, 0.0, 0.05}, 0.001, 1.0);  // outside the bore
+  for (int k = 0; k < 20; ++k) p.add_sphere(k, {0.0, 0.0, 0.001 + 0.002 * k}, 0.001, 1.0);
+  p.add_sphere(20, {0.001, 0.0, 0.045}, 0.001, 1.0);
+  p.add_sphere(21, {0.0, 0.001, 0.050}, 0.001, 1.0);
+  p.add_sphere(22, {0.1, 0.0, 0.02}, 0.001, 1.0);  // outside the bore
   const CylinderGeometry tube{.radius = 0.004, .length = 0.3, .inner_radius = 0.003};
   const PlugColumn column = plug_column(p, tube, 0.0);
-  EXPECT_EQ(column.particles, 200);
-  EXPECT_NEAR(column.length, 0.0005 + 0.001 * 197 + 0.001, 1e-15);
+  EXPECT_EQ(column.particles, 22);
+  EXPECT_NEAR(column.length, 0.040, 1e-15);
+  // A tip 10 mm up: the column above it is 30 mm long.
+  EXPECT_NEAR(plug_column(p, tube, 0.010).length, 0.030, 1e-15);
   EXPECT_EQ(plug_column(p, tube, 0.3).particles, 0);  // a tip above everything: no column
   EXPECT_EQ(plug_column(p, tube, 0.3).length, 0.0);
 }

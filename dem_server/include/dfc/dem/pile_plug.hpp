@@ -5,20 +5,17 @@
 // follow (h the tip's depth below the original surface; IFR = 1: the soil
 // enters as fast as the pile advances, unplugged; IFR = 0: fully plugged).
 //
-// The column's top is the 99th percentile of the particle tops z + r over
-// the particles whose centres lie in the bore (closer to the axis than its
-// radius) above the tip: a few particles thrown up inside the tube (up to 1 %)
-// do not raise it, and for an evenly filled column it lies about 1 % of the
-// column below the highest particle top.
+// The column's top is the highest particle top z + r, over the particles
+// whose centres lie in the bore (closer to the axis than its radius) above
+// the tip, that the next lower top follows within one largest diameter of
+// those particles: a particle (or a few, spaced out) thrown up the tube and
+// not resting on the column does not raise it.
 #include <cstdint>
 
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/wall_builders.hpp"
 
 namespace dfc::dem {
-
-/// Rank from the top of the particle taken as the column's top: the 99th percentile.
-inline constexpr double plug_top_quantile = 0.99;
 
 struct PlugColumn {
   double length = 0.0;         ///< m, top of the column minus tip_z; 0 with no particle in the bore
