@@ -264,13 +264,16 @@ def collapse_snapshot(run):
     return snapshots_of(run.path)[-1][0]
 
 
-def stress_grid(run, nr=6, nz=8):
-    """sigma_rr, sigma_zz on an r-z grid (rings D_f/4 wide up to 1.5 D_f, layers D_f/4
-    deep from the surface to 2 D_f below it) at every DEM snapshot; written to
-    /foundation_grid/ of the run's file."""
+def stress_grid(run, nr=6, nz=8, r_edges=None, z_edges=None, group_name="foundation_grid"):
+    """sigma_rr, sigma_zz on an r-z grid (by default rings D_f/4 wide up to 1.5 D_f,
+    layers D_f/4 deep from the surface to 2 D_f below it; or the given edges) at
+    every DEM snapshot; written to /<group_name>/ of the run's file."""
     d = run.diameter
-    r_edges = np.linspace(0.0, 0.25 * d * nr, nr + 1)
-    z_edges = run.surface_z - np.linspace(0.0, 0.25 * d * nz, nz + 1)[::-1]
+    if r_edges is None:
+        r_edges = np.linspace(0.0, 0.25 * d * nr, nr + 1)
+    if z_edges is None:
+        z_edges = run.surface_z - np.linspace(0.0, 0.25 * d * nz, nz + 1)[::-1]
+    nr, nz = len(r_edges) - 1, len(z_edges) - 1
     volume = math.pi * np.outer(np.diff(z_edges), np.diff(r_edges ** 2))  # ring cells, [z, r]
     out_rr, out_zz, times = [], [], []
     with h5py.File(run.path, "r") as f:
@@ -298,9 +301,9 @@ def stress_grid(run, nr=6, nz=8):
             times.append(float(snap.attrs["time"]))
     displacement = [displacement_at(run, t) for t in times]
     with h5py.File(run.path, "r+") as f:
-        if "foundation_grid" in f:
-            del f["foundation_grid"]
-        g = f.create_group("foundation_grid")
+        if group_name in f:
+            del f[group_name]
+        g = f.create_group(group_name)
         g.attrs["description"] = ("sigma_rr, sigma_zz [snapshot, z, r] (Pa, compression positive): sum of particle volume x "
                                   "Love-Weber particle stress over each ring cell's volume (tools/centrifuge_foundation.py)")
         g["r_edges_m"] = r_edges
