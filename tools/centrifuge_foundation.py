@@ -106,6 +106,8 @@ def find_runs(directory):
             with open_results(path) as r:
                 if not r.has_series("dem_pile_tip_force_n") or r.summary is None:
                     continue
+                if r.has_series("dem_pile_inner_shaft_force_n"):  # an open tube: tools/open_pile.py
+                    continue
                 if r.scenario["participants"]["dem"]["config"]["particles"].get("generator") != "pcrm":
                     continue
         except (ResultsError, KeyError, TypeError):
