@@ -31,7 +31,6 @@ Exit 0 after writing, 3 when RESULTS_DIR holds no open-pile run, 2 on bad input.
 """
 import argparse
 import json
-import math
 import os
 import sys
 
@@ -39,7 +38,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import numpy as np  # noqa: E402
 
-from centrifuge_foundation import Run, band, h5py, open_results, ResultsError, snapshots_of, spread, stress_grid  # noqa: E402
+from centrifuge_foundation import Run, band, find_study_runs, h5py, open_results, spread, stress_grid, study_runs  # noqa: E402
 
 DEPTHS_MM = (5.0, 10.0, 20.0)  # the forces the docs page reports (Ciantia et al. 2024 Fig. 2a runs to 20 mm)
 IFR_STEP = 1.0e-3  # m, the increment of h over which IFR = dL/dh is taken: about one fine particle diameter at S = 8
@@ -74,19 +73,7 @@ class PileRun(Run):
 
 
 def find_runs(directory):
-    runs = []
-    for entry in sorted(os.listdir(directory)):
-        path = os.path.join(directory, entry, "results.h5")
-        if not os.path.isfile(path):
-            continue
-        try:
-            with open_results(path) as r:
-                if not r.has_series("dem_pile_inner_shaft_force_n"):
-                    continue
-        except (ResultsError, KeyError, TypeError):
-            continue
-        runs.append(PileRun(entry, path))
-    return runs
+    return find_study_runs(directory, lambda r: r.has_series("dem_pile_inner_shaft_force_n"), PileRun)
 
 
 def pyplot():
@@ -297,15 +284,9 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("results_dir", help="the output folder of scenarios/open_pile_chalk_reduced.json (one folder per packing)")
     parser.add_argument("--out", help="folder for the figures and summary.json (default: RESULTS_DIR)")
-    args = parser.parse_args(argv)
-    if not os.path.isdir(args.results_dir):
-        print(f"open_pile.py: no such folder '{args.results_dir}'", file=sys.stderr)
-        return 2
-    runs = find_runs(args.results_dir)
-    if not runs:
-        return 3
-    out = args.out or args.results_dir
-    os.makedirs(out, exist_ok=True)
+    args, runs, out = study_runs(parser, argv, find_runs, "open_pile.py")
+    if isinstance(runs, int):
+        return runs
     plot_force(runs, out)
     plot_plug(runs, out)
     summary = {"diameter_m": runs[0].diameter, "wall_thickness_m": 0.5 * runs[0].diameter - runs[0].inner_radius, "runs": {}}
