@@ -41,6 +41,7 @@ import numpy as np  # noqa: E402
 from centrifuge_foundation import Run, band, find_study_runs, h5py, open_results, spread, stress_grid, study_runs  # noqa: E402
 
 DEPTHS_MM = (5.0, 10.0, 20.0)  # the forces the docs page reports (Ciantia et al. 2024 Fig. 2a runs to 20 mm)
+SMOOTHING = 0.5e-3  # m, the running mean of the force curves in Fig. 2a; the forces at 5, 10, 20 mm are means over the same width
 IFR_STEP = 1.0e-3  # m, the increment of h over which IFR = dL/dh is taken: about one fine particle diameter at S = 8
 
 
@@ -59,16 +60,18 @@ class PileRun(Run):
         self.h = self.displacement
 
     def force_near(self, depth):
-        """Mean pile force over the records within 0.25 mm of penetration `depth` (m)."""
-        near = np.abs(self.h - depth) <= 0.25e-3
+        """Mean pile force over the records within SMOOTHING / 2 of penetration `depth` (m)."""
+        near = np.abs(self.h - depth) <= 0.5 * SMOOTHING
         return float(np.mean(self.force[near])) if near.any() else float("nan")
 
     def plug_ratios(self):
-        """h grid (step IFR_STEP), L, PLR = L/h and IFR = dL/dh on it (IFR at the grid's midpoints)."""
+        """h grid (step IFR_STEP), L, PLR = L/h and IFR = dL/dh on it (IFR over the step that
+        ends at each grid point; NaN until the column holds more than its loose top, L > 0)."""
         moving = self.h > 0
         grid = np.arange(IFR_STEP, float(np.max(self.h)) + 1e-12, IFR_STEP)
         length = np.interp(grid, self.h[moving], self.plug[moving])
-        ifr = np.diff(np.concatenate(([0.0], length))) / IFR_STEP
+        before = np.concatenate(([0.0], length[:-1]))
+        ifr = np.where(before > 0.0, (length - before) / IFR_STEP, np.nan)
         return grid, length, length / grid, ifr
 
 
@@ -83,20 +86,30 @@ def pyplot():
     return plt
 
 
+def smoothed(run, values):
+    """Running mean of `values` over SMOOTHING of penetration (the force of a bonded rock
+    jumps by tens of per cent from record to record as bonds break)."""
+    step = float(np.median(np.diff(run.h[run.h > 0]))) if (run.h > 0).sum() > 1 else 0.0
+    n = max(1, int(round(SMOOTHING / step))) if step > 0 else 1
+    return np.convolve(values, np.ones(n) / n, mode="same")
+
+
 def plot_force(runs, out):
-    """Fig. 2a: total force and its three parts against h, mean over packings with min-max band."""
+    """Fig. 2a: total force and its three parts against h (running means over SMOOTHING),
+    mean over packings with min-max band."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     grid = np.linspace(0.0, min(float(np.max(r.h)) for r in runs), 400)
     for name, values_of in (("total", lambda r: r.force), ("annulus", lambda r: r.tip), ("inner shaft", lambda r: r.inner),
                             ("outer shaft", lambda r: r.outer)):
-        mean, low, high = band(runs, grid, values_of)
+        mean, low, high = band(runs, grid, lambda r: smoothed(r, values_of(r)))
         line, = ax.plot(1e3 * grid, mean, label=name)
         if len(runs) > 1:
             ax.fill_between(1e3 * grid, low, high, color=line.get_color(), alpha=0.2, lw=0)
     ax.set_xlabel("pile displacement h (mm)")
     ax.set_ylabel("force (N)")
-    ax.set_title(f"Installation force and its split ({len(runs)} packing{'s' if len(runs) > 1 else ''}; band: min-max)")
+    ax.set_title(f"Installation force and its split ({len(runs)} packing{'s' if len(runs) > 1 else ''}; band: min-max;\n"
+                 f"running mean over {1e3 * SMOOTHING:g} mm)", fontsize=10)
     ax.legend()
     ax.grid(alpha=0.3)
     fig.tight_layout()
@@ -292,7 +305,7 @@ def main(argv=None):
     summary = {"diameter_m": runs[0].diameter, "wall_thickness_m": 0.5 * runs[0].diameter - runs[0].inner_radius, "runs": {}}
     for k, run in enumerate(runs):
         grid, length, plr, ifr = run.plug_ratios()
-        last = grid >= grid[-1] - 5e-3 + 1e-12
+        last = (grid >= grid[-1] - 5e-3 + 1e-12) & np.isfinite(ifr)
         summary["runs"][run.label] = {
             "seed": run.seed, "velocity_m_s": run.velocity,
             "particles": float(run.series["dem_particle_count"][-1]),
