@@ -36,7 +36,12 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
+import warnings  # noqa: E402
+
 import numpy as np  # noqa: E402
+
+warnings.filterwarnings("ignore", message="Mean of empty slice")  # band() past the end of a shorter run
+warnings.filterwarnings("ignore", message="All-NaN slice encountered")
 
 from centrifuge_foundation import Run, band, find_study_runs, h5py, open_results, spread, stress_grid, study_runs  # noqa: E402
 
@@ -53,6 +58,7 @@ class PileRun(Run):
         with open_results(path) as r:
             pile = r.scenario["participants"]["dem"]["config"]["pile"]
             self.inner_radius = float(pile["radius_m"]) - float(pile["wall_thickness_m"])
+            self.failure = r.failure  # None unless the run stopped on an error (it is shown up to there)
         self.inner = self.series["dem_pile_inner_shaft_force_n"]
         self.outer = self.series["dem_pile_outer_shaft_force_n"]
         self.plug = self.series["dem_pile_plug_length_m"]
@@ -99,7 +105,7 @@ def plot_force(runs, out):
     mean over packings with min-max band."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    grid = np.linspace(0.0, min(float(np.max(r.h)) for r in runs), 400)
+    grid = np.linspace(0.0, max(float(np.max(r.h)) for r in runs), 400)  # each run up to where it got
     for name, values_of in (("total", lambda r: r.force), ("annulus", lambda r: r.tip), ("inner shaft", lambda r: r.inner),
                             ("outer shaft", lambda r: r.outer)):
         mean, low, high = band(runs, grid, lambda r: smoothed(r, values_of(r)))
@@ -310,7 +316,7 @@ def main(argv=None):
             "seed": run.seed, "velocity_m_s": run.velocity,
             "particles": float(run.series["dem_particle_count"][-1]),
             "dem_steps": run.summary.get("dem_steps"), "wall_time_s": run.summary.get("wall_time_s"),
-            "final_displacement_m": float(np.max(run.h)),
+            "final_displacement_m": float(np.max(run.h)), "failure": run.failure,
             "force_n": {f"{d:g}mm": run.force_near(1e-3 * d) for d in DEPTHS_MM},
             "final_force_n": {"total": float(run.force[-1]), "annulus": float(run.tip[-1]), "inner_shaft": float(run.inner[-1]),
                               "outer_shaft": float(run.outer[-1])},
