@@ -310,7 +310,8 @@ def main(argv=None):
     plot_force(runs, out)
     plot_plug(runs, out)
     summary = {"diameter_m": runs[0].diameter, "wall_thickness_m": 0.5 * runs[0].diameter - runs[0].inner_radius, "runs": {}}
-    for k, run in enumerate(runs):
+    section = max(runs, key=lambda r: float(np.max(r.h)))  # Fig. 2b and the damage map: the first run that got furthest
+    for run in runs:
         grid, length, plr, ifr = run.plug_ratios()
         last = (grid >= grid[-1] - 5e-3 + 1e-12) & np.isfinite(ifr)
         summary["runs"][run.label] = {
@@ -326,7 +327,7 @@ def main(argv=None):
             "final_plug_length_m": float(length[-1]), "final_plug_length_ratio": float(plr[-1]),
             "ifr_last_5mm": float(np.mean(ifr[last])),
             "force_balance": force_balance(run),
-            **analyse(run, out, figures=(k == 0)),
+            **analyse(run, out, figures=run is section),
         }
     entries = summary["runs"].values()
     summary["packings"] = {
