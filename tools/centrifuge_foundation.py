@@ -96,7 +96,8 @@ class Run:
         return float(self.tip[k] / self.area), float(self.h[k] / self.diameter)
 
 
-def find_runs(directory):
+def find_study_runs(directory, accept, make):
+    """make(label, path) for every <directory>/<label>/results.h5 that accept(results) takes."""
     runs = []
     for entry in sorted(os.listdir(directory)):
         path = os.path.join(directory, entry, "results.h5")
@@ -104,14 +105,40 @@ def find_runs(directory):
             continue
         try:
             with open_results(path) as r:
-                if not r.has_series("dem_pile_tip_force_n") or r.summary is None:
-                    continue
-                if r.scenario["participants"]["dem"]["config"]["particles"].get("generator") != "pcrm":
+                if not accept(r):
                     continue
         except (ResultsError, KeyError, TypeError):
             continue
-        runs.append(Run(entry, path))
+        runs.append(make(entry, path))
     return runs
+
+
+def is_foundation_run(r):
+    """A finished run that pushed the (closed) pile into a generated body."""
+    if not r.has_series("dem_pile_tip_force_n") or r.summary is None:
+        return False
+    if r.has_series("dem_pile_inner_shaft_force_n"):  # an open tube: tools/open_pile.py
+        return False
+    return r.scenario["participants"]["dem"]["config"]["particles"].get("generator") == "pcrm"
+
+
+def find_runs(directory):
+    return find_study_runs(directory, is_foundation_run, Run)
+
+
+def study_runs(parser, argv, find, tool):
+    """Parsed arguments, the runs find(RESULTS_DIR) returns and the output folder (made),
+    or an exit code in place of the runs: 2 for a missing folder, 3 for no run."""
+    args = parser.parse_args(argv)
+    if not os.path.isdir(args.results_dir):
+        print(f"{tool}: no such folder '{args.results_dir}'", file=sys.stderr)
+        return args, 2, None
+    runs = find(args.results_dir)
+    if not runs:
+        return args, 3, None
+    out = args.out or args.results_dir
+    os.makedirs(out, exist_ok=True)
+    return args, runs, out
 
 
 def study_groups(runs):
@@ -264,13 +291,16 @@ def collapse_snapshot(run):
     return snapshots_of(run.path)[-1][0]
 
 
-def stress_grid(run, nr=6, nz=8):
-    """sigma_rr, sigma_zz on an r-z grid (rings D_f/4 wide up to 1.5 D_f, layers D_f/4
-    deep from the surface to 2 D_f below it) at every DEM snapshot; written to
-    /foundation_grid/ of the run's file."""
+def stress_grid(run, nr=6, nz=8, r_edges=None, z_edges=None, group_name="foundation_grid"):
+    """sigma_rr, sigma_zz on an r-z grid (by default rings D_f/4 wide up to 1.5 D_f,
+    layers D_f/4 deep from the surface to 2 D_f below it; or the given edges) at
+    every DEM snapshot; written to /<group_name>/ of the run's file."""
     d = run.diameter
-    r_edges = np.linspace(0.0, 0.25 * d * nr, nr + 1)
-    z_edges = run.surface_z - np.linspace(0.0, 0.25 * d * nz, nz + 1)[::-1]
+    if r_edges is None:
+        r_edges = np.linspace(0.0, 0.25 * d * nr, nr + 1)
+    if z_edges is None:
+        z_edges = run.surface_z - np.linspace(0.0, 0.25 * d * nz, nz + 1)[::-1]
+    nr, nz = len(r_edges) - 1, len(z_edges) - 1
     volume = math.pi * np.outer(np.diff(z_edges), np.diff(r_edges ** 2))  # ring cells, [z, r]
     out_rr, out_zz, times = [], [], []
     with h5py.File(run.path, "r") as f:
@@ -298,9 +328,9 @@ def stress_grid(run, nr=6, nz=8):
             times.append(float(snap.attrs["time"]))
     displacement = [displacement_at(run, t) for t in times]
     with h5py.File(run.path, "r+") as f:
-        if "foundation_grid" in f:
-            del f["foundation_grid"]
-        g = f.create_group("foundation_grid")
+        if group_name in f:
+            del f[group_name]
+        g = f.create_group(group_name)
         g.attrs["description"] = ("sigma_rr, sigma_zz [snapshot, z, r] (Pa, compression positive): sum of particle volume x "
                                   "Love-Weber particle stress over each ring cell's volume (tools/centrifuge_foundation.py)")
         g["r_edges_m"] = r_edges
@@ -326,15 +356,9 @@ def main(argv=None):
     parser.add_argument("results_dir", help="the output folder of scenarios/centrifuge_pile_gravity.json (one folder per variant)")
     parser.add_argument("--out", help="folder for the figures and summary.json (default: RESULTS_DIR)")
     parser.add_argument("--section-label", help="variant whose bonds Fig. 7 shows (default: the highest g-level's first packing)")
-    args = parser.parse_args(argv)
-    if not os.path.isdir(args.results_dir):
-        print(f"centrifuge_foundation.py: no such folder '{args.results_dir}'", file=sys.stderr)
-        return 2
-    runs = find_runs(args.results_dir)
-    if not runs:
-        return 3
-    out = args.out or args.results_dir
-    os.makedirs(out, exist_ok=True)
+    args, runs, out = study_runs(parser, argv, find_runs, "centrifuge_foundation.py")
+    if isinstance(runs, int):
+        return runs
     groups, base_velocity = study_groups(runs)
     plot_fig5(groups, out)
     plot_fig6(groups, out)

@@ -142,7 +142,8 @@ class GridWriter {
   }
 
   // The bonds of a particle snapshot as points at their midpoints, with their
-  // state (1 intact, 2 damaged, 3 broken in tension, 4 broken in shear).
+  // state (1 intact, 2 damaged, 3 broken in tension, 4 broken in shear) and,
+  // where the DEM sends it, the damage variable D (bond_damage).
   void bond_grid(const XdmfSnapshot& snapshot) {
     const std::optional<std::int64_t> bonds = bond_count(snapshot);
     if (!bonds) return;
@@ -157,6 +158,7 @@ class GridWriter {
     data_item(snapshot, *find(snapshot, "bond_position"), "          ");
     out_ << "        </Geometry>\n";
     attribute(snapshot, *find(snapshot, "bond_state"), "Node");
+    if (const XdmfArrayInfo* damage = find(snapshot, "bond_damage")) attribute(snapshot, *damage, "Node");  // damage_bond's D
     out_ << "      </Grid>\n";
   }
 

@@ -7,9 +7,11 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/dem/cell_stress.hpp"
+#include "dfc/dem/damage_bond_law.hpp"
 #include "dfc/dem/foundation_loading.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
+#include "dfc/dem/pile_plug.hpp"
 #include "dfc/dem/region_config.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 
@@ -33,19 +35,26 @@ void append_bond_arrays(const Simulation& s, std::vector<protocol::Array>& array
   const ParticleStore& p = s.particles();
   const PairContacts& pairs = s.pair_contacts();
   const PeriodicSpace space = s.periodic_cell() ? PeriodicSpace(*s.periodic_cell()) : PeriodicSpace();
+  // damage_bond keeps its damage variable D (Ciantia et al. 2024 Eq. 2) in a
+  // history column: written per bond as bond_damage (1 once broken).
+  const bool has_damage = s.settings().particle_law.info != nullptr && s.settings().particle_law.info->keyword == DamageBondLaw::keyword;
   std::vector<Vec3> where;
   std::vector<std::int64_t> state;
+  std::vector<double> damage;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const BondState b = bond_state(pairs.history.data() + k * pairs.stride);
+    const double* history = pairs.history.data() + k * pairs.stride;
+    const BondState b = bond_state(history);
     if (b == BondState::none) continue;
     const std::uint32_t i = pairs.first[k], j = pairs.second[k];
     const Vec3 d = space.branch(p.position[i], p.position[j]);
     where.push_back(p.position[i] + (p.radius[i] / (p.radius[i] + p.radius[j])) * d);
     state.push_back(std::int64_t(b));
+    if (has_damage) damage.push_back(is_bonded(b) ? history[DamageBondLaw::damage] : 1.0);
   }
   const auto m = std::int64_t(state.size());
   arrays.push_back(protocol::Array::from_f64("bond_position", {m, 3}, flatten(where)));
   arrays.push_back(protocol::Array::from_i64("bond_state", {m}, state));
+  if (has_damage) arrays.push_back(protocol::Array::from_f64("bond_damage", {m}, damage));
 }
 
 /// Stress profile of a generated body over horizontal slices one REV cell
@@ -80,10 +89,17 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   generation_removed_by_interface_ = 0;
   averages_ = nlohmann::json::object();
   pile_tip_.clear();
+  pile_inner_.clear();
+  pile_outer_.clear();
   pile_waiting_ = false;
   if (model_.pile_wall) {
-    pile_reference_ = sim().walls()[*model_.pile_wall].vertices.front();
-    pile_tip_ = pile_tip_facets(sim().walls()[*model_.pile_wall], pile_direction());
+    const Wall& pile = sim().walls()[*model_.pile_wall];
+    pile_reference_ = pile.vertices.front();
+    pile_tip_ = pile_tip_facets(pile, pile_direction());
+    if (config_.pile->geometry.inner_radius > 0.0) {  // open tube: annulus, inner and outer shaft
+      pile_inner_ = pile_inner_facets(pile, config_.pile->geometry.axis_x, config_.pile->geometry.axis_y);
+      pile_outer_ = other_facets(pile, pile_tip_, pile_inner_);
+    }
     pile_waiting_ = config_.pile->start_when.has_value();
     pile_start_step_ = config_.pile->start_step;
   }
@@ -167,6 +183,10 @@ nlohmann::json DemBackend::monitor_units() const {
   units["pile_force_n"] = newton;
   units["pile_tip_force_n"] = newton;
   units["pile_shaft_force_n"] = newton;
+  units["pile_inner_shaft_force_n"] = newton;
+  units["pile_outer_shaft_force_n"] = newton;
+  units["pile_plug_length_m"] = metre;
+  units["pile_plug_particles"] = dimensionless;
   units["pile_displacement_m"] = metre;
   units["dt_critical_s"] = second;
   for (const Wall& wall : simulation().walls()) {
@@ -268,7 +288,7 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   const auto& walls = s.walls();
   std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
-  Vec3 reaction_sum, pile_tip_sum;
+  Vec3 reaction_sum, pile_tip_sum, pile_inner_sum, pile_outer_sum;
   Vec3 cell_stress_sum;
   double axial_sum = 0.0, lateral_sum = 0.0;
   const bool ramping = model_.pile_wall && !pile_waiting_ && s.step_count() + request.n_steps > pile_start_step_ &&
@@ -295,7 +315,11 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
       for (std::size_t v = 0; v < node_force_sum.size(); ++v) node_force_sum[v] += wall.vertex_force[v];
       reaction_sum += wall.force_on_particles;
     }
-    if (model_.pile_wall) pile_tip_sum += facets_force(walls[*model_.pile_wall], pile_tip_);
+    if (model_.pile_wall) {
+      pile_tip_sum += facets_force(walls[*model_.pile_wall], pile_tip_);
+      pile_inner_sum += facets_force(walls[*model_.pile_wall], pile_inner_);
+      pile_outer_sum += facets_force(walls[*model_.pile_wall], pile_outer_);
+    }
   }
   if (pile_waiting_ && pile_may_start(*config_.pile->start_when, s.step_count(), config_.pile->start_step, measure(s).unbalanced_force_ratio)) {
     pile_start_step_ = s.step_count();
@@ -332,6 +356,10 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["pile_force_n"] = total;
     averages_["pile_tip_force_n"] = tip;
     averages_["pile_shaft_force_n"] = total - tip;
+    if (!pile_inner_.empty()) {  // an open tube: each shaft from its own facets (their sum is tested against the total)
+      averages_["pile_inner_shaft_force_n"] = -dot(inv_n * pile_inner_sum, pile_direction());
+      averages_["pile_outer_shaft_force_n"] = -dot(inv_n * pile_outer_sum, pile_direction());
+    }
   }
   if (interface_wall_) {
     double power = 0.0;
@@ -415,9 +443,17 @@ nlohmann::json DemBackend::monitors() {
     }
   }
   if (model_.pile_wall) {
-    out["pile_displacement_m"] = dot(s.walls()[*model_.pile_wall].vertices.front() - pile_reference_, pile_direction());
+    const Vec3 moved = s.walls()[*model_.pile_wall].vertices.front() - pile_reference_;
+    out["pile_displacement_m"] = dot(moved, pile_direction());
     for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
       if (!out.contains(force)) out[force] = 0.0;
+    if (!pile_inner_.empty()) {
+      for (const char* force : {"pile_inner_shaft_force_n", "pile_outer_shaft_force_n"})
+        if (!out.contains(force)) out[force] = 0.0;
+      const PlugColumn plug = plug_column(s.particles(), config_.pile->geometry, config_.pile->geometry.tip_z + moved.z);
+      out["pile_plug_length_m"] = plug.length;
+      out["pile_plug_particles"] = plug.particles;
+    }
   }
   return out;
 }

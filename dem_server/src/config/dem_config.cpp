@@ -163,6 +163,12 @@ PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact, do
   pile.geometry.length = cfg.positive("length_m");
   // A 1000-sided prism is within 5e-6 of the circle; more sides only cost memory (1e8 exhausted it).
   pile.geometry.sides = int(cfg.integer("sides", 24, 3, 1000));
+  if (cfg.has("wall_thickness_m")) {  // an open-ended tube (wall_builders.hpp)
+    const double thickness = cfg.positive("wall_thickness_m");
+    if (!(thickness < pile.geometry.radius))
+      cfg.fail("wall_thickness_m", "must be less than radius_m (the tube's outer radius); omit it for a closed pile");
+    pile.geometry.inner_radius = pile.geometry.radius - thickness;
+  }
   pile.velocity = to_vec3(cfg.vec3("velocity_m_s", {0.0, 0.0, 0.0}));
   pile.start_step = cfg.integer("start_step", 0, 0);
   if (auto when = cfg.optional_child("start_when")) {
@@ -463,7 +469,9 @@ std::string dem_config_help() {
                    the unbalanced-force ratio is at most r: loading after equilibrium), "ramp_steps":0 (the
                    velocity rises linearly from 0 over this many steps), "contact"}  closed
                   cylinder with a flat tip; monitors pile_force_n, pile_tip_force_n, pile_shaft_force_n,
-                  pile_displacement_m
+                  pile_displacement_m. With "wall_thickness_m": t (< radius_m) an open-ended tube (the tip
+                  is the annulus) that also sends pile_inner_shaft_force_n, pile_outer_shaft_force_n and
+                  the soil column inside it: pile_plug_length_m, pile_plug_particles (pile_plug.hpp)
   ucs             {"top_wall", "bottom_wall" (names of two walls), "area_m2" (default: derived from a lattice
                    bed with platens normal to z: disc through the outermost particle of a cylinder, x-y bounding
                    box of a box), "seat_platens" (true: move both platens along the axis onto the outermost particles),

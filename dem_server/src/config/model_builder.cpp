@@ -15,10 +15,13 @@ namespace {
 /// inside the pile and load its tip from within, so it is removed like one
 /// cut by a wall. The polygonal pile is inscribed in its radius, so testing
 /// against the circle removes a slightly larger region — on the safe side.
+/// An open tube's bore (r < inner_radius) is soil: only a centre inside the
+/// tube's wall counts (spheres the wall cuts go as for any wall, fit_to_wall).
 bool inside_pile(const GeneratedSphere& s, const CylinderGeometry& g) {
   const double dx = s.centre.x - g.axis_x;
   const double dy = s.centre.y - g.axis_y;
-  return dx * dx + dy * dy < g.radius * g.radius && s.centre.z > g.tip_z && s.centre.z < g.tip_z + g.length;
+  const double r2 = dx * dx + dy * dy;
+  return r2 < g.radius * g.radius && r2 >= g.inner_radius * g.inner_radius && s.centre.z > g.tip_z && s.centre.z < g.tip_z + g.length;
 }
 
 /// s, critical step of these particles with the particle, wall_contact
@@ -139,7 +142,7 @@ DemModel build_model(const DemConfig& c) {
   for (const auto& w : c.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
   if (c.pile) {
     // A pile that starts at equilibrium rests until DemBackend sets it moving (foundation_loading.hpp).
-    Wall pile = make_wall("pile", make_closed_cylinder_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
+    Wall pile = make_wall("pile", make_pile_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
                           c.pile->start_when ? Vec3{} : c.pile->velocity, c.pile->start_step);
     pile.facet_force.resize(pile.facet_count());  // its tip and shaft forces
     model.pile_wall = sim.add_wall(std::move(pile));

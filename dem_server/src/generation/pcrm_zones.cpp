@@ -137,15 +137,22 @@ std::size_t mark_seam_overlaps(const ReplicatedBody& body, const SeamRank& rank,
 
 /// Distance t >= 0 that a sphere (centre c, radius r) moves along the unit
 /// vector u before it touches the sphere `other`; infinity if it never does.
-/// A pair that already overlaps (the seam keeps overlaps up to
-/// seam_overlap_fraction) stops a move that would deepen it at once: moved
-/// freely, such a sphere was pushed half a radius into its neighbour in the
-/// three-zone paper model, and the first step failed on the overlap.
-double distance_to_touch(const Vec3& c, double r, const Vec3& u, const GeneratedSphere& other) {
+/// A pair that already overlaps (neighbours in the REV's packing) limits the
+/// move only where it would deepen: to an overlap of `fraction` of the smaller
+/// radius (the seam's own tolerance), 0 if it is already deeper. Unlimited,
+/// a seated sphere was driven into its neighbour by up to its gap to the
+/// coarse sphere, close to a radius (an overlap the first step refuses).
+double distance_to_touch(const Vec3& c, double r, const Vec3& u, const GeneratedSphere& other, double fraction) {
   const Vec3 d = other.centre - c;
   const double reach = r + other.radius, along = dot(d, u), across2 = norm2(d) - along * along;
-  if (norm2(d) <= reach * reach) return along > 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
-  if (along <= 0.0 || across2 >= reach * reach) return std::numeric_limits<double>::infinity();
+  if (along <= 0.0) return std::numeric_limits<double>::infinity();
+  if (norm2(d) <= reach * reach) {
+    const double deep = reach - fraction * std::min(r, other.radius);  // centre distance at the tolerated overlap
+    if (norm2(d) <= deep * deep) return 0.0;
+    if (across2 >= deep * deep) return std::numeric_limits<double>::infinity();
+    return along - std::sqrt(deep * deep - across2);
+  }
+  if (across2 >= reach * reach) return std::numeric_limits<double>::infinity();
   return along - std::sqrt(reach * reach - across2);
 }
 
@@ -153,11 +160,13 @@ double distance_to_touch(const Vec3& c, double r, const Vec3& u, const Generated
 /// its own radius away moves straight towards the nearest such sphere until
 /// it touches the first sphere in its way; it stays there if that sphere is
 /// of a coarser zone (it is seated), and goes back otherwise (as
-/// boundary_seating.hpp seats a body on a wall: only along a free path).
+/// boundary_seating.hpp seats a body on a wall: only along a free path; a
+/// neighbour it already overlaps stops it where the overlap reaches `fraction`
+/// of the smaller radius).
 /// Trimming and the seam's removals leave the two packings up to a sphere
 /// apart; seated, they touch, and the first step bonds them. Bond loads are
 /// stored history, so moving a sphere leaves them as they are.
-std::size_t seat_seam(ReplicatedBody& body, const SeamRank& rank, double r_max) {
+std::size_t seat_seam(ReplicatedBody& body, const SeamRank& rank, double r_max, double fraction) {
   SphereGrid grid(r_max);
   const std::vector<std::uint32_t> order = seam_order(body, rank);
   for (const std::uint32_t i : order) grid.insert(i, body.spheres[i].centre);
@@ -178,7 +187,7 @@ std::size_t seat_seam(ReplicatedBody& body, const SeamRank& rank, double r_max) 
     std::int64_t first_hit = -1;
     grid.near(s.centre, [&](std::uint32_t j) {
       if (j == i) return;
-      const double t = distance_to_touch(s.centre, s.radius, u, body.spheres[j]);
+      const double t = distance_to_touch(s.centre, s.radius, u, body.spheres[j], fraction);
       if (t < travel) travel = t, first_hit = j;
     });
     if (first_hit < 0 || !rank.above(body.material[std::size_t(first_hit)], body.material[i]) || travel > gap * (1.0 + 1e-9)) continue;
@@ -239,7 +248,7 @@ ZonedBody replicate_zones(const PreparedRev& rev, const std::vector<HistoryColum
   const SeamRank rank{zones};
   out.seam_removed = mark_seam_overlaps(out.body, rank, r_max, seam_overlap_fraction, removed);
   if (out.seam_removed > 0) remove_spheres(out.body, removed);
-  out.seam_seated = seat_seam(out.body, rank, r_max);
+  out.seam_seated = seat_seam(out.body, rank, r_max, seam_overlap_fraction);
   out.zone_spheres.assign(zones.size(), 0);
   for (const auto m : out.body.material) ++out.zone_spheres[m];
   return out;

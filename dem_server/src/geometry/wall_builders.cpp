@@ -56,4 +56,38 @@ WallMesh make_closed_cylinder_mesh(const CylinderGeometry& g) {
   return mesh;
 }
 
+WallMesh make_open_tube_mesh(const CylinderGeometry& g) {
+  if (!(g.radius > 0.0) || !(g.length > 0.0)) throw UserError("a tube wall needs a positive radius and length");
+  if (!(g.inner_radius > 0.0 && g.inner_radius < g.radius)) throw UserError("a tube wall needs an inner radius between 0 and its radius");
+  if (g.sides < 3) throw UserError("a tube wall needs at least 3 sides");
+  const auto s = static_cast<std::uint32_t>(g.sides);
+  // Rings: 0 outer at the tip, 1 inner at the tip, 2 outer at the top, 3 inner at the top.
+  WallMesh mesh;
+  mesh.vertices.reserve(4 * s);
+  for (int ring = 0; ring < 4; ++ring) {
+    const double r = ring % 2 == 0 ? g.radius : g.inner_radius;
+    const double z = g.tip_z + (ring < 2 ? 0.0 : g.length);
+    for (std::uint32_t k = 0; k < s; ++k) {
+      const double theta = 2.0 * std::numbers::pi * double(k) / double(s);
+      mesh.vertices.push_back({g.axis_x + r * std::cos(theta), g.axis_y + r * std::sin(theta), z});
+    }
+  }
+  const auto at = [s](std::uint32_t ring, std::uint32_t k) { return ring * s + k % s; };
+  for (std::uint32_t k = 0; k < s; ++k) {  // the annulus, normal -z
+    mesh.facets.push_back({at(0, k), at(1, k), at(1, k + 1)});
+    mesh.facets.push_back({at(0, k), at(1, k + 1), at(0, k + 1)});
+  }
+  for (std::uint32_t k = 0; k < s; ++k) {  // the inner shaft, normal towards the axis
+    mesh.facets.push_back({at(1, k), at(3, k + 1), at(1, k + 1)});
+    mesh.facets.push_back({at(1, k), at(3, k), at(3, k + 1)});
+  }
+  for (std::uint32_t k = 0; k < s; ++k) {  // the outer shaft, outward normal
+    mesh.facets.push_back({at(0, k), at(0, k + 1), at(2, k + 1)});
+    mesh.facets.push_back({at(0, k), at(2, k + 1), at(2, k)});
+  }
+  return mesh;
+}
+
+WallMesh make_pile_mesh(const CylinderGeometry& g) { return g.inner_radius > 0.0 ? make_open_tube_mesh(g) : make_closed_cylinder_mesh(g); }
+
 }  // namespace dfc::dem

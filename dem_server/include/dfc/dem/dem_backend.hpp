@@ -16,6 +16,9 @@
 //   pile_force_n               force of the particles on the pile along -velocity direction
 //                              (positive = resisting penetration), averaged over the advance
 //   pile_tip_force_n, pile_shaft_force_n  its part on the flat end's facets and on the others
+//   pile_inner_shaft_force_n, pile_outer_shaft_force_n  an open tube's (pile.wall_thickness_m) shaft
+//                              parts, each from its facets (the tip is then the annulus)
+//   pile_plug_length_m, pile_plug_particles  an open tube's soil column above its tip (pile_plug.hpp)
 //   wall_<name>_force_n/_moment_nm  particles on each rigid wall (moment about the origin), averaged
 //   axial_stress_pa, axial_strain   with a "ucs" section only (ucs_platens.hpp): platen stress,
 //                              compression positive, averaged over the advance; strain at its end
@@ -79,6 +82,8 @@ class DemBackend final : public protocol::SolverBackend {
   Vec3 cell_reference_length_;                ///< m, cell edges at the end of preparation
   Vec3 pile_reference_;                       ///< m, a pile vertex at configure
   std::vector<std::size_t> pile_tip_;         ///< facets of the pile's flat end (foundation_loading.hpp)
+  std::vector<std::size_t> pile_inner_;       ///< an open tube's inner-shaft facets (empty for a closed pile)
+  std::vector<std::size_t> pile_outer_;       ///< an open tube's outer-shaft facets (empty for a closed pile)
   bool pile_waiting_ = false;                 ///< pile.start_when given and not yet met
   std::int64_t pile_start_step_ = 0;          ///< first moving step of the pile (start_step, or when start_when was met)
   nlohmann::json averages_ = nlohmann::json::object();  ///< advance-averaged monitors of the last advance

@@ -13,6 +13,11 @@
 //  - Tip and shaft: the force of the particles on the pile split between the
 //    facets of its flat end (the tip, facing the motion) and the others (the
 //    shaft), each along -direction (positive resists penetration).
+//  - Open-ended tube (pile.wall_thickness_m; Ciantia et al. 2024 §3): the tip
+//    is the annulus, and the shaft splits into the inner shaft (facets facing
+//    the axis: the plug's friction) and the outer shaft (the rest); each part
+//    from its own facets, so that annulus + inner + outer = the pile force
+//    up to the rounding of two summation orders.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -42,6 +47,15 @@ struct PileStartRule {
 /// Facets of `pile` whose outward normal points along `direction` (the flat
 /// end that leads the motion): within 1e-6 of parallel.
 [[nodiscard]] std::vector<std::size_t> pile_tip_facets(const Wall& pile, const Vec3& direction);
+
+/// Facets of `pile` whose outward normal points towards the vertical axis
+/// through (axis_x, axis_y) (the bore of an open tube; none on a closed
+/// cylinder): the normal's horizontal part has a negative dot product with the
+/// facet centroid's offset from the axis.
+[[nodiscard]] std::vector<std::size_t> pile_inner_facets(const Wall& pile, double axis_x, double axis_y);
+
+/// The facets of `pile` in neither `tip` nor `inner` (sorted lists): the outer shaft.
+[[nodiscard]] std::vector<std::size_t> other_facets(const Wall& pile, std::span<const std::size_t> tip, std::span<const std::size_t> inner);
 
 /// Sum of the per-facet forces (`Wall::facet_force`, the particles ON the
 /// wall) over `facets`.

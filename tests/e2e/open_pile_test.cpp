@@ -1,0 +1,165 @@
+// The open-ended pile jacked into chalk (docs/open_pile.md; Ciantia,
+// Previtali, Zheng et al. 2024, §3-4) through the real coupler, DEM and FDM
+// servers: the small variant tests/e2e/scenarios/open_pile_small.json (S = 8
+// at the pile, 16 beyond, the pile pushed 3 mm at 2 m/s), run once for all
+// checks (one process, tests/e2e/CMakeLists.txt).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <numeric>
+
+#include "command_runner.hpp"
+#include "dfc/common/hdf5_file.hpp"
+#include "e2e_paths.hpp"
+#include "results_series.hpp"
+
+namespace dfc::testing {
+namespace {
+
+constexpr double kDiameter = 0.008;     ///< m, the pile's outer diameter
+constexpr double kInnerRadius = 0.003;  ///< m, the bore (wall 1 mm)
+constexpr double kSurface = 0.020;      ///< m, the region's top, where the tip starts
+constexpr double kCore = 0.010;         ///< m, the DEM core's radius
+
+const std::filesystem::path& results() {
+  static const std::filesystem::path file = [] {
+    auto folder = fresh_directory("open_pile_small");
+    const CommandResult result =
+        run_command({coupler(), "run", (e2e_dir() / "scenarios" / "open_pile_small.json").string(), "--out", folder.string(), "--no-progress"},
+                    std::chrono::seconds(900));
+    EXPECT_EQ(result.exit_status, 0) << result.output;
+    return folder / "p1" / "results.h5";
+  }();
+  return file;
+}
+
+double final_tip_z() { return kSurface - series(results(), "dem_pile_displacement_m").back(); }
+
+TEST(OpenPile, TheForceSplitsExactlyIntoAnnulusInnerAndOuterShaft) {
+  const auto total = series(results(), "dem_pile_force_n");
+  const auto annulus = series(results(), "dem_pile_tip_force_n");
+  const auto inner = series(results(), "dem_pile_inner_shaft_force_n");
+  const auto outer = series(results(), "dem_pile_outer_shaft_force_n");
+  // Each part is summed over its own facets, the total over the wall's
+  // contacts: the same contact forces in two orders, equal to a few roundings.
+  for (std::size_t k = 0; k < total.size(); ++k)
+    ASSERT_NEAR(annulus[k] + inner[k] + outer[k], total[k], 1e-12 * (1.0 + std::abs(annulus[k]) + std::abs(inner[k]) + std::abs(outer[k])))
+        << "record " << k;
+  // The flat annulus carries most of a bonded rock's resistance (it crushes
+  // the chalk beneath it): over the loading its mean exceeds half the total.
+  const auto moved = series(results(), "dem_pile_displacement_m");
+  double on_annulus = 0.0, on_pile = 0.0;
+  for (std::size_t k = 0; k < total.size(); ++k)
+    if (moved[k] > 0.0) on_annulus += annulus[k], on_pile += total[k];
+  std::cout << "mean share of the annulus over the loading " << on_annulus / on_pile << "\n";
+  EXPECT_GT(on_annulus, 0.5 * on_pile);
+}
+
+TEST(OpenPile, SoilEntersThePile) {
+  // The tip starts on the surface with nothing in its bore; after 3 mm the
+  // bore holds a column of particles. Its length L is at least half the
+  // penetration (a column that enters at half the pile's rate would be
+  // strongly plugged already) and not more than the penetration plus two
+  // largest fine diameters (1.44 mm each: the surface's roughness, heave).
+  const auto particles = series(results(), "dem_pile_plug_particles");
+  const auto length = series(results(), "dem_pile_plug_length_m");
+  const auto moved = series(results(), "dem_pile_displacement_m");
+  EXPECT_EQ(particles.front(), 0.0);
+  EXPECT_GT(particles.back(), 10.0);
+  std::cout << "after " << moved.back() << " m: " << particles.back() << " particles in the bore, column " << length.back() << " m\n";
+  EXPECT_GT(length.back(), 0.5 * moved.back());
+  EXPECT_LT(length.back(), moved.back() + 2 * 1.44e-3);
+}
+
+/// Love–Weber sigma_rr (compression positive) of the particles whose centres
+/// lie in the ring r_lo <= r < r_hi between z_lo and z_hi: sum V_p sigma_p,rr
+/// over the ring's volume (as tools/centrifuge_foundation.py stress_grid).
+double ring_sigma_rr(const h5::File& file, const std::string& snap, double r_lo, double r_hi, double z_lo, double z_hi) {
+  const auto x = h5::read_f64(file, snap + "/particle_position");
+  const auto radius = h5::read_f64(file, snap + "/particle_radius");
+  const auto s = h5::read_f64(file, snap + "/particle_stress_pa");  // xx, xy, xz, yy, yz, zz
+  double sum = 0.0;
+  for (std::size_t p = 0; p < radius.size(); ++p) {
+    const double px = x[3 * p], py = x[3 * p + 1], pz = x[3 * p + 2], r = std::hypot(px, py);
+    if (r < r_lo || r >= r_hi || pz < z_lo || pz >= z_hi || r == 0.0) continue;
+    const double c = px / r, sn = py / r;
+    const double rr = c * c * s[6 * p] + 2 * c * sn * s[6 * p + 1] + sn * sn * s[6 * p + 3];
+    sum += 4.0 / 3.0 * M_PI * std::pow(radius[p], 3) * rr;
+  }
+  return sum / (M_PI * (r_hi * r_hi - r_lo * r_lo) * (z_hi - z_lo));
+}
+
+TEST(OpenPile, RadialStressRisesTowardsTheWallNearTheTip) {
+  // At the end, within D/4 of the tip's depth: the ring 2 mm wide against
+  // the pile's outer wall against the next ring out (2 mm wide, to 1 mm
+  // short of the coupling wall). The jacked pile pushes the rock aside.
+  const h5::File file = h5::File::open_read_only(results());
+  const std::string snap = last_snapshot(file, "dem");
+  const double tip = final_tip_z();
+  const double r0 = 0.5 * kDiameter;
+  const double near = ring_sigma_rr(file, snap, r0, r0 + 0.002, tip - 0.25 * kDiameter, tip + 0.25 * kDiameter);
+  const double far = ring_sigma_rr(file, snap, r0 + 0.003, r0 + 0.005, tip - 0.25 * kDiameter, tip + 0.25 * kDiameter);
+  std::cout << "sigma_rr at the tip's depth: " << near << " Pa next to the wall, " << far << " Pa 3-5 mm out\n";
+  EXPECT_GT(near, far);
+  EXPECT_GT(near, 0.0);
+}
+
+TEST(OpenPile, DamageConcentratesBelowTheAnnulus) {
+  // Mean bond damage D (1 = broken) of the bonds beneath the annulus (r
+  // within 0.5 mm of the wall's span, down to D/2 below the tip) against the
+  // far field (the outermost 2 mm of the core, deeper than 1 D below the
+  // tip). Factor 3: the far field's D is the REV's few damaged bonds.
+  const h5::File file = h5::File::open_read_only(results());
+  const std::string snap = last_snapshot(file, "dem");
+  const auto where = h5::read_f64(file, snap + "/bond_position");
+  const auto damage = h5::read_f64(file, snap + "/bond_damage");
+  const double tip = final_tip_z();
+  double below = 0.0, far = 0.0;
+  int below_n = 0, far_n = 0;
+  for (std::size_t b = 0; b < damage.size(); ++b) {
+    const double r = std::hypot(where[3 * b], where[3 * b + 1]), z = where[3 * b + 2];
+    if (r >= kInnerRadius - 0.0005 && r <= 0.5 * kDiameter + 0.0005 && z < tip && z >= tip - 0.5 * kDiameter) {
+      below += damage[b];
+      ++below_n;
+    } else if (r >= kCore - 0.002 && z < tip - kDiameter) {
+      far += damage[b];
+      ++far_n;
+    }
+  }
+  ASSERT_GT(below_n, 10);
+  ASSERT_GT(far_n, 50);
+  std::cout << "mean bond damage beneath the annulus " << below / below_n << " (" << below_n << " bonds), far field " << far / far_n << " ("
+            << far_n << ")\n";
+  EXPECT_GT(below / below_n, 3.0 * far / far_n);
+}
+
+TEST(OpenPile, VerticalForcesOnTheParticlesBalanceAtRestAndAreReportedUnderLoading) {
+  // Pile + floor + coupling wall (the FDM) + weight on the particles: at the
+  // generation's equilibrium, just before the pile moves, they balance within
+  // 1 % of the weight. Under loading the residual is the particles' momentum
+  // rate plus the local damping force, which no boundary carries
+  // (docs/open_pile.md §4 reports it; not asserted).
+  const auto pile = series(results(), "dem_wall_pile_force_n");
+  const auto floor = series(results(), "dem_wall_floor_force_n");
+  const auto interface = series(results(), "dem_interface_force_reaction");
+  const auto weight = series(results(), "dem_total_weight_n");
+  const auto moved = series(results(), "dem_pile_displacement_m");
+  const auto residual = [&](std::size_t k) { return -pile[3 * k + 2] - floor[3 * k + 2] + interface[3 * k + 2] - weight[k]; };
+  const auto first = std::size_t(std::find_if(moved.begin(), moved.end(), [](double d) { return d > 0.0; }) - moved.begin());
+  ASSERT_GT(first, 1u);
+  EXPECT_LT(std::abs(residual(first - 1)), 0.01 * weight[first - 1]);
+  double sum = 0.0, load = 0.0;
+  int n = 0;
+  for (std::size_t k = first; k < moved.size(); ++k) {
+    sum += residual(k);
+    load += std::abs(pile[3 * k + 2]) + weight[k];
+    ++n;
+  }
+  std::cout << "at rest: residual " << residual(first - 1) << " N of weight " << weight[first - 1] << " N; under loading: mean residual "
+            << sum / n << " N, " << sum / load << " of pile force + weight\n";
+}
+
+}  // namespace
+}  // namespace dfc::testing
