@@ -97,10 +97,13 @@ class Run:
 
 
 def find_study_runs(directory, accept, make):
-    """make(label, path) for every <directory>/<label>/results.h5 that accept(results) takes."""
+    """make(label, path) for every <directory>/<label>/results.h5 that accept(results) takes,
+    or for <directory>/results.h5 itself (a scenario without variants, labelled by the folder)."""
     runs = []
-    for entry in sorted(os.listdir(directory)):
-        path = os.path.join(directory, entry, "results.h5")
+    single = os.path.join(directory, "results.h5")
+    candidates = [(os.path.basename(os.path.normpath(directory)), single)] if os.path.isfile(single) else [
+        (entry, os.path.join(directory, entry, "results.h5")) for entry in sorted(os.listdir(directory))]
+    for entry, path in candidates:
         if not os.path.isfile(path):
             continue
         try:
