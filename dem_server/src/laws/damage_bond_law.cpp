@@ -85,7 +85,7 @@ ContactForce DamageBondLaw::update_bond(const ContactKinematics& k, double* h) c
   const double sigma_0 = e_n >= 0.0 ? tensile_strength : compressive_strength;
   const EnvelopePoint trial{kn * e_n / sigma_0, ks * norm(e_s) / cohesion, kn * norm(e_b) * s.radius / tensile_strength};
   double damage_value = h[damage];
-  if (damage_envelope(trial) > 0.0) {
+  if (outside_damage_envelope(trial)) {
     // 3. Closest-point return (energy norm) and the plastic increments it implies.
     const ReturnWeights w{sigma_0 * sigma_0 / kn, cohesion * cohesion / ks, tensile_strength * tensile_strength / (4.0 * kn)};
     const EnvelopePoint x = closest_admissible_point(trial, w);

@@ -107,6 +107,12 @@ double damage_envelope(const EnvelopePoint& x) noexcept {
   return std::pow(std::abs(x.m), bending_exponent) + InnerProblem::shear_normal_part(x.n, std::abs(x.v)) - 1.0;
 }
 
+bool outside_damage_envelope(const EnvelopePoint& x) noexcept {
+  const double m = std::abs(x.m);
+  if (m <= 1.0 && InnerProblem::shear_normal_part(x.n, std::abs(x.v)) + m <= 1.0 - 1e-12) return false;
+  return damage_envelope(x) > 0.0;
+}
+
 EnvelopePoint closest_admissible_point(const EnvelopePoint& trial, const ReturnWeights& weights) noexcept {
   if (damage_envelope(trial) <= 0.0) return trial;
   // Scale the weights to O(1): only their ratios matter.
