@@ -6,12 +6,9 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
-#include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/damage_bond_law.hpp"
-#include "dfc/dem/foundation_loading.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
-#include "dfc/dem/pile_plug.hpp"
 #include "dfc/dem/region_config.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 
@@ -88,43 +85,14 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   interface_wall_.reset();
   generation_removed_by_interface_ = 0;
   averages_ = nlohmann::json::object();
-  pile_tip_.clear();
-  pile_inner_.clear();
-  pile_outer_.clear();
-  pile_waiting_ = false;
-  if (model_.pile_wall) {
-    const Wall& pile = sim().walls()[*model_.pile_wall];
-    pile_reference_ = pile.vertices.front();
-    pile_tip_ = pile_tip_facets(pile, pile_direction());
-    if (config_.pile->geometry.inner_radius > 0.0) {  // open tube: annulus, inner and outer shaft
-      pile_inner_ = pile_inner_facets(pile, config_.pile->geometry.axis_x, config_.pile->geometry.axis_y);
-      pile_outer_ = other_facets(pile, pile_tip_, pile_inner_);
-    }
-    pile_waiting_ = config_.pile->start_when.has_value();
-    pile_start_step_ = config_.pile->start_step;
-  }
-  ucs_axis_.reset();
-  if (config_.ucs) {  // build_model adds the configured walls first, in order: same indices
-    const auto& walls = sim().walls();
-    ucs_axis_ = platen_axis(walls[config_.ucs->top_wall].vertices, walls[config_.ucs->bottom_wall].vertices);
-  }
-  cell_servo_.reset();
-  triaxial_.reset();
-  if (config_.triaxial) {
-    const auto& walls = sim().walls();
-    const BoxAxes axes = box_axes(box_vertices(walls, config_.triaxial->walls));
-    const BoxSize size = box_size(walls, config_.triaxial->walls, axes);
-    triaxial_ = TriaxialRun{axes, size, triaxial_shearing(*config_.triaxial, model_.max_strain_rate, size.height)};
-  }
+  stepper_ = nullptr;  // a servo-controlled experiment steps the simulation itself
+  for (const auto& protocol : model_.loading)
+    if (protocol->drives_step()) stepper_ = protocol.get();
   nlohmann::json info = {{"dt_suggested", model_.dt},
                          {"dt_max", model_.dt_critical},
                          {"particles", sim().particles().size()},
                          {"particles_removed_by_walls", model_.removed_particles},
                          {"contact_law", config_.contact.info->keyword}};
-  if (config_.periodic) {
-    cell_servo_ = make_servo(config_.periodic->loading, config_.periodic->servo_gain, model_.max_strain_rate);
-    cell_reference_length_ = sim().periodic_cell()->length();
-  }
   if (const auto& gen = model_.generation) {
     info["generation"] = {{"rev_particles", gen->rev.spheres.size()},
                           {"rev_bonds", gen->rev.bonds},
@@ -173,22 +141,11 @@ nlohmann::json DemBackend::monitor_units() const {
   // free of the conditions that choose which ones are sent.
   nlohmann::json units = protocol::shared_monitor_units();
   for (const char* count : {"particle_count", "contact_count", "coordination_number", "bonds_intact", "bonds_damaged",
-                            "bonds_broken_tension", "bonds_broken_shear", "axial_strain", "volumetric_strain", "porosity",
-                            "cell_strain_xx", "cell_strain_yy", "cell_strain_zz"})
+                            "bonds_broken_tension", "bonds_broken_shear"})
     units[count] = dimensionless;
-  for (const char* stress : {"axial_stress_pa", "lateral_stress_pa", "deviatoric_stress_pa", "cell_stress_xx_pa", "cell_stress_yy_pa",
-                             "cell_stress_zz_pa"})
-    units[stress] = pascal;
   units["total_weight_n"] = newton;
-  units["pile_force_n"] = newton;
-  units["pile_tip_force_n"] = newton;
-  units["pile_shaft_force_n"] = newton;
-  units["pile_inner_shaft_force_n"] = newton;
-  units["pile_outer_shaft_force_n"] = newton;
-  units["pile_plug_length_m"] = metre;
-  units["pile_plug_particles"] = dimensionless;
-  units["pile_displacement_m"] = metre;
   units["dt_critical_s"] = second;
+  for (const LoadingProtocolEntry& entry : loading_protocol_registry()) entry.declare_monitors(units);
   for (const Wall& wall : simulation().walls()) {
     units["wall_" + wall.name + "_force_n"] = newton;
     units["wall_" + wall.name + "_moment_nm"] = newton_metre;
@@ -250,12 +207,6 @@ void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
   else interface_wall_ = s.add_wall(std::move(wall));
 }
 
-Vec3 DemBackend::pile_direction() const {
-  const Vec3 v = config_.pile ? config_.pile->velocity : Vec3{};
-  const double speed = norm(v);
-  return speed > 0.0 ? (1.0 / speed) * v : Vec3{0.0, 0.0, -1.0};
-}
-
 protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& request) {
   using protocol::ErrorCode;
   using protocol::ProtocolError;
@@ -288,24 +239,17 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   const auto& walls = s.walls();
   std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
-  Vec3 reaction_sum, pile_tip_sum, pile_inner_sum, pile_outer_sum;
-  Vec3 cell_stress_sum;
-  double axial_sum = 0.0, lateral_sum = 0.0;
-  const bool ramping = model_.pile_wall && !pile_waiting_ && s.step_count() + request.n_steps > pile_start_step_ &&
-                       s.step_count() < pile_start_step_ + config_.pile->ramp_steps;
+  Vec3 reaction_sum;
+  for (const auto& protocol : model_.loading) protocol->before_advance(s, request.n_steps);
   for (std::int64_t step = 0; step < request.n_steps; ++step) {
-    if (ramping && s.step_count() >= pile_start_step_)
-      s.set_wall_velocity(*model_.pile_wall, ramped_velocity(config_.pile->velocity, s.step_count() - pile_start_step_, config_.pile->ramp_steps));
-    if (cell_servo_) {
-      cell_stress_sum += servo_step(s, *cell_servo_, request.dt).diagonal();
-    } else if (triaxial_) {
-      const BoxStress box = triaxial_step(s, config_.triaxial->walls, triaxial_->axes, triaxial_->control, request.dt);
-      axial_sum += box.axial();
-      lateral_sum += box.lateral();
+    for (const auto& protocol : model_.loading) protocol->before_step(s);
+    if (stepper_) {
+      stepper_->step(s, request.dt);
     } else {
       // Only the last step's contact outputs are read (results, measurements).
       s.step(request.dt, step + 1 < request.n_steps ? ContactRecord::gathered_only : ContactRecord::complete);
     }
+    for (const auto& protocol : model_.loading) protocol->after_step(s);
     for (std::size_t w = 0; w < walls.size(); ++w) {
       wall_force_sum[w] += walls[w].force;
       wall_moment_sum[w] += walls[w].moment;
@@ -315,18 +259,8 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
       for (std::size_t v = 0; v < node_force_sum.size(); ++v) node_force_sum[v] += wall.vertex_force[v];
       reaction_sum += wall.force_on_particles;
     }
-    if (model_.pile_wall) {
-      pile_tip_sum += facets_force(walls[*model_.pile_wall], pile_tip_);
-      pile_inner_sum += facets_force(walls[*model_.pile_wall], pile_inner_);
-      pile_outer_sum += facets_force(walls[*model_.pile_wall], pile_outer_);
-    }
   }
-  if (pile_waiting_ && pile_may_start(*config_.pile->start_when, s.step_count(), config_.pile->start_step, measure(s).unbalanced_force_ratio)) {
-    pile_start_step_ = s.step_count();
-    s.set_wall_velocity(*model_.pile_wall, ramped_velocity(config_.pile->velocity, 0, config_.pile->ramp_steps));
-    pile_waiting_ = false;
-    std::cerr << "dem_server: pile starts at step " << s.step_count() << " (pile.start_when met)" << std::endl;
-  }
+  for (const auto& protocol : model_.loading) protocol->end_advance(s);
   const double inv_n = 1.0 / double(request.n_steps);
 
   // 4. Averages (impulse / duration) and outputs.
@@ -337,30 +271,7 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["wall_" + walls[w].name + "_force_n"] = to_json(inv_n * wall_force_sum[w]);
     averages_["wall_" + walls[w].name + "_moment_nm"] = to_json(inv_n * wall_moment_sum[w]);
   }
-  if (ucs_axis_)
-    averages_["axial_stress_pa"] = axial_stress(*ucs_axis_, inv_n * wall_force_sum[config_.ucs->top_wall],
-                                                inv_n * wall_force_sum[config_.ucs->bottom_wall], config_.ucs->area);
-  if (cell_servo_) {
-    averages_["cell_stress_xx_pa"] = inv_n * cell_stress_sum.x;
-    averages_["cell_stress_yy_pa"] = inv_n * cell_stress_sum.y;
-    averages_["cell_stress_zz_pa"] = inv_n * cell_stress_sum.z;
-  }
-  if (triaxial_) {
-    averages_["axial_stress_pa"] = inv_n * axial_sum;
-    averages_["lateral_stress_pa"] = inv_n * lateral_sum;
-    averages_["deviatoric_stress_pa"] = inv_n * (axial_sum - lateral_sum);
-  }
-  if (model_.pile_wall) {
-    const double total = -dot(inv_n * wall_force_sum[*model_.pile_wall], pile_direction());
-    const double tip = -dot(inv_n * pile_tip_sum, pile_direction());
-    averages_["pile_force_n"] = total;
-    averages_["pile_tip_force_n"] = tip;
-    averages_["pile_shaft_force_n"] = total - tip;
-    if (!pile_inner_.empty()) {  // an open tube: each shaft from its own facets (their sum is tested against the total)
-      averages_["pile_inner_shaft_force_n"] = -dot(inv_n * pile_inner_sum, pile_direction());
-      averages_["pile_outer_shaft_force_n"] = -dot(inv_n * pile_outer_sum, pile_direction());
-    }
-  }
+  for (const auto& protocol : model_.loading) protocol->averages(s, {wall_force_sum, inv_n}, averages_);
   if (interface_wall_) {
     double power = 0.0;
     for (std::size_t v = 0; v < node_force_sum.size(); ++v) {
@@ -394,67 +305,7 @@ nlohmann::json DemBackend::monitors() {
     out["bonds_broken_tension"] = bonds.broken_tension;
     out["bonds_broken_shear"] = bonds.broken_shear;
   }
-  if (ucs_axis_) {
-    const Wall& top = s.walls()[config_.ucs->top_wall];
-    const Wall& bottom = s.walls()[config_.ucs->bottom_wall];
-    out["axial_strain"] = axial_strain(*ucs_axis_, platen_separation(*ucs_axis_, top.vertices, bottom.vertices));
-    if (!out.contains("axial_stress_pa")) out["axial_stress_pa"] = axial_stress(*ucs_axis_, top.force, bottom.force, config_.ucs->area);
-  }
-  if (triaxial_) {
-    const TriaxialWalls& box = config_.triaxial->walls;
-    const BoxSize size = box_size(s.walls(), box, triaxial_->axes);
-    const BoxSize& ref = triaxial_->reference;
-    out["axial_strain"] = (ref.height - size.height) / ref.height;
-    out["volumetric_strain"] = (ref.volume() - size.volume()) / ref.volume();
-    out["porosity"] = box_porosity(s.particles(), size);
-    if (!out.contains("axial_stress_pa")) {
-      const BoxStress stress = box_stress(s.walls(), box, triaxial_->axes, size);
-      out["axial_stress_pa"] = stress.axial();
-      out["lateral_stress_pa"] = stress.lateral();
-      out["deviatoric_stress_pa"] = stress.deviator();
-    }
-  }
-  if (const auto& cell = s.periodic_cell()) {
-    const Vec3 l = cell->length();
-    const Vec3& l0 = cell_reference_length_;
-    out["cell_strain_xx"] = (l0.x - l.x) / l0.x;
-    out["cell_strain_yy"] = (l0.y - l.y) / l0.y;
-    out["cell_strain_zz"] = (l0.z - l.z) / l0.z;
-    out["porosity"] = cell_porosity(s.particles(), *cell);
-    if (!out.contains("cell_stress_xx_pa")) {
-      const Vec3 stress = measure_cell_stress(s).diagonal();
-      out["cell_stress_xx_pa"] = stress.x;
-      out["cell_stress_yy_pa"] = stress.y;
-      out["cell_stress_zz_pa"] = stress.z;
-    }
-    // Triaxial (or unconfined, sigma_3 = 0) loading of the REV: the same
-    // axial monitors as a platen test (ucs_platens.hpp), so one plot and one
-    // calibration procedure serve both, plus the deviator q = sigma_a - sigma_3
-    // (sigma_3 the mean of the two lateral stresses).
-    if (!ucs_axis_ && config_.periodic && config_.periodic->loading.mode == CellLoading::Mode::triaxial) {
-      static constexpr const char* stress_keys[3] = {"cell_stress_xx_pa", "cell_stress_yy_pa", "cell_stress_zz_pa"};
-      static constexpr const char* strain_keys[3] = {"cell_strain_xx", "cell_strain_yy", "cell_strain_zz"};
-      const std::size_t a = config_.periodic->loading.axis;
-      const double axial = out[stress_keys[a]].get<double>();
-      const double lateral = 0.5 * (out[stress_keys[(a + 1) % 3]].get<double>() + out[stress_keys[(a + 2) % 3]].get<double>());
-      out["axial_stress_pa"] = axial;
-      out["axial_strain"] = out[strain_keys[a]];
-      out["deviatoric_stress_pa"] = axial - lateral;
-    }
-  }
-  if (model_.pile_wall) {
-    const Vec3 moved = s.walls()[*model_.pile_wall].vertices.front() - pile_reference_;
-    out["pile_displacement_m"] = dot(moved, pile_direction());
-    for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
-      if (!out.contains(force)) out[force] = 0.0;
-    if (!pile_inner_.empty()) {
-      for (const char* force : {"pile_inner_shaft_force_n", "pile_outer_shaft_force_n"})
-        if (!out.contains(force)) out[force] = 0.0;
-      const PlugColumn plug = plug_column(s.particles(), config_.pile->geometry, config_.pile->geometry.tip_z + moved.z);
-      out["pile_plug_length_m"] = plug.length;
-      out["pile_plug_particles"] = plug.particles;
-    }
-  }
+  for (const auto& protocol : model_.loading) protocol->monitors(s, out);
   return out;
 }
 

@@ -1,17 +1,18 @@
 // DemBackend's checkpoint (protocol/SPEC.md §4.7, docs/checkpoints.md): the
-// simulation's running state (Simulation::save_state) and the monitors the
-// last advance averaged, and whether the pile still waits for its start
-// (pile.start_when) and the step it started at. Everything else the backend holds (the servo and
-// triaxial controls, the platen axis, the pile's and the cell's reference
-// lengths, the generation report) follows from the section and the interface
-// mesh, which a resumed run sends again before restore: it is rebuilt, not stored.
+// simulation's running state (Simulation::save_state), the monitors the last
+// advance averaged, and each loading protocol's running state
+// (LoadingProtocol::save_state: whether the pile still waits for
+// pile.start_when and the step it started at). Everything else (the servo and
+// triaxial controls, the platen axis, the pile's and the cell's references,
+// the generation report) follows from the section and the interface mesh,
+// which a resumed run sends again before restore: it is rebuilt, not stored.
 #include "dfc/common/state_archive.hpp"
 #include "dfc/dem/dem_backend.hpp"
 
 namespace dfc::dem {
 
 namespace {
-constexpr std::uint32_t kLayoutVersion = 3;  ///< raise when the stored members change
+constexpr std::uint32_t kLayoutVersion = 4;  ///< raise when the stored members change
 }  // namespace
 
 std::string DemBackend::checkpoint_state() {
@@ -20,9 +21,8 @@ std::string DemBackend::checkpoint_state() {
   sim().save_state(out);
   out.tag("averages");
   out.string(averages_.dump());  // numbers as shortest round-trip text: the same doubles come back
-  out.tag("pile");
-  out.value(pile_waiting_);
-  out.value(pile_start_step_);
+  out.tag("loading");
+  for (const auto& protocol : model_.loading) protocol->save_state(out);
   return out.take();
 }
 
@@ -34,9 +34,8 @@ void DemBackend::restore_state(std::string_view bytes) {
   const std::string averages = in.string();
   averages_ = nlohmann::json::parse(averages, nullptr, false);
   if (!averages_.is_object()) in.fail("the averaged monitors as a JSON object");
-  in.tag("pile");
-  in.value(pile_waiting_);
-  in.value(pile_start_step_);
+  in.tag("loading");
+  for (const auto& protocol : model_.loading) protocol->load_state(in);
   in.finish();
 }
 

@@ -52,6 +52,7 @@
 #include "dfc/dem/conventional_generation.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/model_builder.hpp"
+#include "dfc/dem/model_layout.hpp"
 #include "dfc/dem/particle_stress.hpp"
 #include "dfc/dem/pcrm_replication.hpp"
 #include "dfc/dem/settling.hpp"
@@ -309,7 +310,7 @@ int main(int argc, char** argv) try {
   // field the body is generated for, and no sphere leaves with the lid.
   spec.relaxed_lid_pressure = 0.01 * generated.profile.vertical(pcrm.region.z_min);
   std::vector<Wall> walls;
-  for (const auto& w : config.walls) walls.push_back(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact));
+  for (const auto& w : lay_out_model(config).walls) walls.push_back(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact));
   const SimulationSettings settings{.particle_law = config.contact,
                                     .gravity = config.gravity,
                                     .local_damping = config.local_damping,

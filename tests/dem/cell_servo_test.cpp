@@ -9,6 +9,7 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/dem_backend.hpp"
+#include "dfc/dem/model_layout.hpp"
 
 namespace dfc::dem {
 namespace {
@@ -34,12 +35,13 @@ nlohmann::json rev_config(int threads = 1) {
 
 TEST(RadiusExpansion, HitsTheTargetPorosityToRoundOffBeforeRelaxation) {
   const DemConfig config = parse_dem_config(rev_config());
+  const ModelLayout layout = lay_out_model(config);
   double solid = 0.0;
-  for (const double r : config.particles.final_radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  for (const double r : layout.final_radius) solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   EXPECT_NEAR(1.0 - solid / config.periodic->cell.volume(), 0.42, 1e-14);  // cube root scaling: a few ulps
-  EXPECT_GT(config.particles.spheres.size(), 250u);
-  for (std::size_t k = 0; k < config.particles.spheres.size(); ++k)
-    EXPECT_DOUBLE_EQ(config.particles.spheres[k].radius * 1.6, config.particles.final_radius[k]);
+  EXPECT_GT(layout.spheres.size(), 250u);
+  for (std::size_t k = 0; k < layout.spheres.size(); ++k)
+    EXPECT_DOUBLE_EQ(layout.spheres[k].radius * 1.6, layout.final_radius[k]);
 
   const DemModel model = build_model(config);
   ASSERT_TRUE(model.preparation && model.preparation->expansion);
@@ -120,8 +122,8 @@ TEST(CellServo, TriaxialHoldsTheConfiningStressWhileTheAxialEdgeShortens) {
 TEST(PeriodicConfig, TooNarrowACellIsAConfigErrorNamingTheKey) {
   nlohmann::json c = rev_config();
   c["periodic"]["max_m"] = {0.0064, 0.002, 0.0064};
-  try {
-    (void)parse_dem_config(c);
+  try {  // checked against the placed spheres' final radii, when the model is laid out
+    (void)lay_out_model(parse_dem_config(c));
     FAIL() << "expected a ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("periodic.max_m"), std::string::npos) << e.what();

@@ -4,6 +4,7 @@
 #include "dem_test_support.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/dem_config.hpp"
+#include "dfc/dem/model_layout.hpp"
 
 namespace dfc::dem {
 namespace {
@@ -22,7 +23,7 @@ ConfigError error_of(const nlohmann::json& config) {
 TEST(DemConfig, TheTestBedIsValidAndUsesTheDefaults) {
   const DemConfig c = parse_dem_config(test::box_bed_config());
   EXPECT_EQ(c.walls.size(), 5u);
-  EXPECT_EQ(c.particles.spheres.size(), 5u * 5u * 3u);
+  EXPECT_EQ(lay_out_model(c).spheres.size(), 5u * 5u * 3u);
   EXPECT_EQ(std::get<LinearLaw>(c.walls[0].contact.law).friction, 0.5);  // wall_contact defaults to contact
   EXPECT_EQ(std::get<LinearLaw>(c.walls[1].contact.law).friction, 0.0);  // per-wall override
   EXPECT_EQ(c.timestep.fraction_of_critical, 0.3);
@@ -98,7 +99,7 @@ TEST(DemConfig, UpscalingScalesRadiiAndFollowsEachLawsRule) {
   EXPECT_EQ(up.scale_factor, 2.0);
   EXPECT_EQ(up.particles.lattice.radius_min, 2.0 * base.particles.lattice.radius_min);
   EXPECT_EQ(up.particles.lattice.radius_max, 2.0 * base.particles.lattice.radius_max);
-  for (const auto& s : up.particles.spheres) EXPECT_GE(s.radius, up.particles.lattice.radius_min);
+  for (const auto& s : lay_out_model(up).spheres) EXPECT_GE(s.radius, up.particles.lattice.radius_min);
   // linear: stiffness ~ E* R (exponent 1), friction and damping ratio fixed.
   const auto& law = std::get<LinearLaw>(up.contact.law);
   EXPECT_EQ(law.kn, 2.0 * std::get<LinearLaw>(base.contact.law).kn);

@@ -73,6 +73,18 @@ inline nlohmann::json box_bed_config() {
   };
 }
 
+/// The box bed between two platens along z with a "ucs" section closing them
+/// at a strain rate of 2 /s (the side walls removed).
+inline nlohmann::json ucs_box_bed_config() {
+  nlohmann::json c = box_bed_config();
+  c["walls"] = nlohmann::json::array({
+      {{"type", "plane"}, {"name", "bottom"}, {"point_m", {0, 0, -0.01}}, {"normal", {0, 0, 1}}},
+      {{"type", "plane"}, {"name", "top"}, {"point_m", {0, 0, 0.5}}, {"normal", {0, 0, -1}}},
+  });
+  c["ucs"] = {{"top_wall", "top"}, {"bottom_wall", "bottom"}, {"strain_rate_per_s", 2.0}};
+  return c;
+}
+
 struct SettledBed {
   Simulation simulation;
   double dt = 0.0;

@@ -7,6 +7,7 @@
 #include "dem_test_support.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/dem_config.hpp"
+#include "dfc/dem/model_layout.hpp"
 #include "dfc/dem/triaxial_walls.hpp"
 #include "dfc/dem/wall_builders.hpp"
 
@@ -149,8 +150,9 @@ TEST(TriaxialWalls, SectionIsCheckedWithTheKeyToFix) {
   ASSERT_TRUE(parsed.triaxial.has_value());
   // Seated: the top platen now touches the highest sphere.
   double top = -1.0;
-  for (const auto& sphere : parsed.particles.spheres) top = std::max(top, sphere.centre.z + sphere.radius);
-  EXPECT_NEAR(parsed.walls[1].mesh.vertices[0].z, top, 1e-15);
+  const ModelLayout layout = lay_out_model(parsed);
+  for (const auto& sphere : layout.spheres) top = std::max(top, sphere.centre.z + sphere.radius);
+  EXPECT_NEAR(layout.walls[1].mesh.vertices[0].z, top, 1e-15);
 
   nlohmann::json c = good;
   c["triaxial"]["lateral_walls"] = {"x0", "x1", "y0"};
@@ -181,14 +183,14 @@ TEST(TriaxialWalls, RadiusExpansionFillsTheBoxOfTheWalls) {
   nlohmann::json c = triaxial_config();
   c["particles"] = {{"generator", "radius_expansion"}, {"density_kg_m3", 2650}, {"radius_min_m", 0.002}, {"radius_max_m", 0.0025},
                     {"porosity", 0.5},                 {"seed", 4}};
-  const DemConfig parsed = parse_dem_config(c);
-  ASSERT_FALSE(parsed.particles.spheres.empty());
+  const ModelLayout parsed = lay_out_model(parse_dem_config(c));
+  ASSERT_FALSE(parsed.spheres.empty());
   double solid = 0.0;
-  for (std::size_t k = 0; k < parsed.particles.spheres.size(); ++k) {
-    const GeneratedSphere& s = parsed.particles.spheres[k];
+  for (std::size_t k = 0; k < parsed.spheres.size(); ++k) {
+    const GeneratedSphere& s = parsed.spheres[k];
     EXPECT_GE(s.centre.x - s.radius, 0.0);
     EXPECT_LE(s.centre.z + s.radius, 0.06);
-    const double r = parsed.particles.final_radius[k];
+    const double r = parsed.final_radius[k];
     solid += 4.0 / 3.0 * std::numbers::pi * r * r * r;
   }
   EXPECT_NEAR(1.0 - solid / (0.03 * 0.03 * 0.06), 0.5, 1e-12);

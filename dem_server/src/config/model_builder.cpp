@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/model_layout.hpp"
 #include "dfc/dem/timestep.hpp"
 #include "dfc/dem/triangle_geometry.hpp"
 
@@ -35,9 +36,9 @@ double critical_step(const ParticleStore& particles, const DemConfig& c, const s
   return critical_timestep(particles, laws);
 }
 
-/// Steps 2-4 of build_model after the particles: the cell, the time step
-/// and the preparation stages.
-DemModel finish_model(DemModel& model, const DemConfig& c, bool prepared) {
+/// Steps 3-5 of build_model after the particles: the cell, the time step
+/// and the loading protocols' preparation.
+DemModel finish_model(DemModel& model, const DemConfig& c, const ModelLayout& layout, bool prepared) {
   Simulation& sim = *model.simulation;
   if (sim.particles().size() == 0) throw ConfigError("particles", "every sphere overlaps a wall or the pile; nothing is left to simulate");
   if (c.periodic) {
@@ -48,7 +49,7 @@ DemModel finish_model(DemModel& model, const DemConfig& c, bool prepared) {
     }
   }
 
-  // 3. Time step: the coupling wall (wall_contact) arrives later but counts now.
+  // 4. Time step: the coupling wall (wall_contact) arrives later but counts now.
   model.dt_critical = critical_step(sim.particles(), c, sim.walls());
   if (c.timestep.dt) {
     if (*c.timestep.dt > model.dt_critical) {
@@ -62,9 +63,10 @@ DemModel finish_model(DemModel& model, const DemConfig& c, bool prepared) {
     model.dt = c.timestep.fraction_of_critical * model.dt_critical;
   }
 
-  // 4. Preparation of a periodic REV or of a sample in six walls. The critical
-  // step above used the start radii of a radius expansion; the grown packing's
-  // step is taken again, for the servo stages.
+  // 5. The protocols' preparation: of a periodic REV or of a sample in six
+  // walls (consolidation, confinement), and the references of every
+  // protocol's monitors. The critical step above used the start radii of a
+  // radius expansion; the grown packing's step is taken again, for the servo stages.
   // The servo's cap: 1e-4 strain per step unless given (a periodic cell's
   // loading needs it even without a preparation stage).
   const auto cap = [&] {
@@ -72,20 +74,15 @@ DemModel finish_model(DemModel& model, const DemConfig& c, bool prepared) {
     return given.value_or(1e-4 / model.dt);
   };
   model.max_strain_rate = c.periodic || c.triaxial ? cap() : 0.0;
-  if (!prepared) return std::move(model);
   const double fraction = c.timestep.dt ? *c.timestep.dt / model.dt_critical : c.timestep.fraction_of_critical;
-  if (c.particles.generator == "radius_expansion") {
+  if (prepared && c.particles.generator == "radius_expansion") {
     ParticleStore grown = sim.particles();
-    for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, c.particles.final_radius[std::size_t(grown.id[i])]);
+    for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, layout.final_radius[std::size_t(grown.id[i])]);
     model.dt_critical = critical_step(grown, c, sim.walls());
     model.dt = c.timestep.dt ? std::min(*c.timestep.dt, model.dt_critical) : fraction * model.dt_critical;
     model.max_strain_rate = cap();  // of the grown packing's step
   }
-  if (c.periodic)
-    model.preparation = prepare_sample(sim, *c.periodic, c.particles.final_radius, c.particles.expansion, fraction, model.dt, model.max_strain_rate);
-  else
-    model.preparation = confine_in_walls(sim, c.triaxial->walls, triaxial_confinement(*c.triaxial, model.max_strain_rate), c.triaxial->confinement,
-                                         {c.particles.final_radius, c.particles.expansion, fraction}, model.dt);
+  for (const auto& protocol : model.loading) protocol->prepare(model, {layout.final_radius, fraction});
   return std::move(model);
 }
 
@@ -115,20 +112,13 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
 
 }  // namespace
 
-TriaxialControl triaxial_confinement(const TriaxialConfig& config, double max_strain_rate) {
-  return {.confining_stress = config.confining_stress, .gain = config.servo_gain, .max_strain_rate = max_strain_rate, .platen_speed = std::nullopt};
-}
-
-TriaxialControl triaxial_shearing(const TriaxialConfig& config, double max_strain_rate, double initial_height) {
-  TriaxialControl control = triaxial_confinement(config, max_strain_rate);
-  control.platen_speed = 0.5 * config.strain_rate * initial_height;  // dH/dt = -rate H0, the centre stays put
-  return control;
-}
-
 DemModel build_model(const DemConfig& c) {
   DemModel model;
+  // 1. Where the spheres and walls are (model_layout.hpp), arranged by the loading protocols.
+  model.loading = make_loading_protocols(c);
+  const ModelLayout layout = lay_out_model(c, model.loading);
   // A prepared sample is bonded after its preparation (PFC order), not at the first rebuild.
-  const bool prepared = (c.periodic && (c.particles.generator == "radius_expansion" || c.periodic->consolidation)) || c.triaxial;
+  const bool prepared = std::any_of(model.loading.begin(), model.loading.end(), [](const auto& p) { return p->prepares_sample(); });
   model.simulation = std::make_unique<Simulation>(SimulationSettings{.particle_law = c.contact,
                                                                      .gravity = c.gravity,
                                                                      .local_damping = c.local_damping,
@@ -138,8 +128,8 @@ DemModel build_model(const DemConfig& c) {
                                                                      .material_laws = c.material_laws});
   Simulation& sim = *model.simulation;
 
-  // 1. Rigid walls and the pile.
-  for (const auto& w : c.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
+  // 2. Rigid walls and the pile.
+  for (const auto& w : layout.walls) sim.add_wall(make_wall(w.name, w.mesh, WallMotion::prescribed, w.contact, w.velocity, w.start_step));
   if (c.pile) {
     // A pile that starts at equilibrium rests until DemBackend sets it moving (foundation_loading.hpp).
     Wall pile = make_wall("pile", make_pile_mesh(c.pile->geometry), WallMotion::prescribed, c.pile->contact,
@@ -148,13 +138,13 @@ DemModel build_model(const DemConfig& c) {
     model.pile_wall = sim.add_wall(std::move(pile));
   }
 
-  // 2. Particles; a generated sphere cut by a rigid wall would start with a huge overlap.
+  // 3. Particles; a generated sphere cut by a rigid wall would start with a huge overlap.
   if (c.particles.pcrm) {
     add_generated_body(model, c);
-    return finish_model(model, c, false);
+    return finish_model(model, c, layout, false);
   }
-  for (std::size_t k = 0; k < c.particles.spheres.size(); ++k) {
-    const GeneratedSphere& s = c.particles.spheres[k];
+  for (std::size_t k = 0; k < layout.spheres.size(); ++k) {
+    const GeneratedSphere& s = layout.spheres[k];
     bool cut = false;
     for (const auto& wall : sim.walls()) cut = cut || cut_by_wall(s.centre, s.radius, wall);
     cut = cut || (c.pile && inside_pile(s, c.pile->geometry));
@@ -164,7 +154,7 @@ DemModel build_model(const DemConfig& c) {
     }
     sim.add_sphere(std::int64_t(k), s.centre, s.radius, c.particles.density);
   }
-  return finish_model(model, c, prepared);
+  return finish_model(model, c, layout, prepared);
 }
 
 }  // namespace dfc::dem

@@ -37,10 +37,8 @@
 #include <string_view>
 #include <vector>
 
-#include "dfc/dem/cell_servo.hpp"
 #include "dfc/dem/dem_config.hpp"
 #include "dfc/dem/model_builder.hpp"
-#include "dfc/dem/ucs_platens.hpp"
 #include "dfc/protocol/solver_backend.hpp"
 
 namespace dfc::dem {
@@ -62,8 +60,6 @@ class DemBackend final : public protocol::SolverBackend {
 
  private:
   Simulation& sim();
-  /// Unit vector of the pile's motion (its velocity direction; -z if it does not move).
-  [[nodiscard]] Vec3 pile_direction() const;
   /// configure's info.monitor_units (SPEC.md §6.3): the unit of every monitor monitors() may send.
   [[nodiscard]] nlohmann::json monitor_units() const;
 
@@ -71,21 +67,7 @@ class DemBackend final : public protocol::SolverBackend {
   DemModel model_;
   std::optional<std::size_t> interface_wall_;
   std::size_t generation_removed_by_interface_ = 0;  ///< generated spheres the coupling wall cut (set_interface)
-  std::optional<PlatenAxis> ucs_axis_;        ///< with a "ucs" section: the platens at configure
-  std::optional<CellServo> cell_servo_;       ///< with a "periodic" cell: its loading
-  struct TriaxialRun {
-    BoxAxes axes;
-    BoxSize reference;        ///< at the end of the confinement: H0, W0, V0 of the strains
-    TriaxialControl control;  ///< shearing stage
-  };
-  std::optional<TriaxialRun> triaxial_;       ///< with a "triaxial" section
-  Vec3 cell_reference_length_;                ///< m, cell edges at the end of preparation
-  Vec3 pile_reference_;                       ///< m, a pile vertex at configure
-  std::vector<std::size_t> pile_tip_;         ///< facets of the pile's flat end (foundation_loading.hpp)
-  std::vector<std::size_t> pile_inner_;       ///< an open tube's inner-shaft facets (empty for a closed pile)
-  std::vector<std::size_t> pile_outer_;       ///< an open tube's outer-shaft facets (empty for a closed pile)
-  bool pile_waiting_ = false;                 ///< pile.start_when given and not yet met
-  std::int64_t pile_start_step_ = 0;          ///< first moving step of the pile (start_step, or when start_when was met)
+  LoadingProtocol* stepper_ = nullptr;        ///< the protocol whose step replaces Simulation::step (none: the plain step)
   nlohmann::json averages_ = nlohmann::json::object();  ///< advance-averaged monitors of the last advance
 };
 

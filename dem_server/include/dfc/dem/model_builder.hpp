@@ -1,11 +1,14 @@
 #pragma once
-// From a validated DEM section to a ready Simulation: walls, pile, particles
-// and the time step.
+// From a validated DEM section to a ready Simulation: the layout (spheres and
+// walls, model_layout.hpp), walls, pile, particles, the time step, and the
+// loading protocols (loading_protocol.hpp) prepared.
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "dfc/dem/dem_config.hpp"
+#include "dfc/dem/loading_protocol.hpp"
 #include "dfc/dem/sample_preparation.hpp"
 #include "dfc/dem/simulation.hpp"
 
@@ -20,18 +23,14 @@ struct DemModel {
   std::optional<PreparationReport> preparation;  ///< periodic cell with radius expansion or consolidation
   double max_strain_rate = 0.0;          ///< 1/s, the servo's cap (periodic cell, triaxial walls)
   std::optional<GeneratedBody> generation;  ///< generator "pcrm": the REV, the replication and the stress scaling
+  std::vector<std::unique_ptr<LoadingProtocol>> loading;  ///< the experiments the section enables, prepared
 };
 
-/// The servo of a triaxial section's confinement stage: every wall at sigma_3.
-[[nodiscard]] TriaxialControl triaxial_confinement(const TriaxialConfig& config, double max_strain_rate);
-/// ... and of its shearing stage: the platens close at rate H0/2 each (H0 the
-/// platen separation at the end of the confinement), the lateral walls at sigma_3.
-[[nodiscard]] TriaxialControl triaxial_shearing(const TriaxialConfig& config, double max_strain_rate, double initial_height);
-
 /// Throws ConfigError("timestep.dt_s") if a fixed dt exceeds the critical step.
-/// With a periodic cell that has radius expansion or a consolidation, runs the
-/// preparation (sample_preparation.hpp) before returning; so does a triaxial
-/// section (confinement in the walls, then bonds).
+/// Runs every loading protocol's prepare before returning: a periodic cell
+/// with radius expansion or a consolidation is prepared
+/// (sample_preparation.hpp), and so is a triaxial section (confinement in the
+/// walls, then bonds).
 [[nodiscard]] DemModel build_model(const DemConfig& config);
 
 }  // namespace dfc::dem

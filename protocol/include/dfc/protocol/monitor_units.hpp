@@ -14,22 +14,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dfc/common/unit_names.hpp"
+
 namespace dfc::protocol {
 
 /// The key of configure's `info` object that holds {monitor name: unit}.
 inline constexpr const char* monitor_units_key = "monitor_units";
 
-/// Unit strings SPEC.md §6.3 uses; one spelling each so that readers can compare them.
-namespace unit {
-inline constexpr const char* dimensionless = "1";
-inline constexpr const char* second = "s";
-inline constexpr const char* metre = "m";
-inline constexpr const char* newton = "N";
-inline constexpr const char* newton_metre = "N m";
-inline constexpr const char* pascal = "Pa";
-inline constexpr const char* joule = "J";
-inline constexpr const char* watt = "W";
-}  // namespace unit
+/// Unit strings SPEC.md §6.3 uses (dfc/common/unit_names.hpp).
+namespace unit = dfc::unit;
 
 /// Numbers a monitor value holds: 1 for a number, 3 for [x, y, z] (SPEC.md
 /// §6.3), 0 for anything else (not a valid monitor value).

@@ -1,0 +1,128 @@
+// The pile jacked into the particles (foundation_loading.hpp): its start rule
+// and velocity ramp, the split of its force into tip and shaft (an open
+// tube's annulus, inner and outer shaft) and the soil column in its bore.
+#include <iostream>
+
+#include "dfc/common/unit_names.hpp"
+#include "dfc/dem/foundation_loading.hpp"
+#include "dfc/dem/loading_protocol.hpp"
+#include "dfc/dem/measurements.hpp"
+#include "dfc/dem/model_builder.hpp"
+#include "dfc/dem/pile_plug.hpp"
+
+namespace dfc::dem {
+
+namespace {
+
+class PileLoading final : public LoadingProtocol {
+ public:
+  explicit PileLoading(const PileConfig& config) : config_(config) {}
+
+  void prepare(DemModel& model, const PreparationInputs& /*inputs*/) override {
+    wall_ = *model.pile_wall;
+    const Wall& pile = model.simulation->walls()[wall_];
+    reference_ = pile.vertices.front();
+    tip_ = pile_tip_facets(pile, direction());
+    if (config_.geometry.inner_radius > 0.0) {  // open tube: annulus, inner and outer shaft
+      inner_ = pile_inner_facets(pile, config_.geometry.axis_x, config_.geometry.axis_y);
+      outer_ = other_facets(pile, tip_, inner_);
+    }
+    waiting_ = config_.start_when.has_value();
+    start_step_ = config_.start_step;
+  }
+
+  void before_advance(const Simulation& s, std::int64_t steps) override {
+    ramping_ = !waiting_ && s.step_count() + steps > start_step_ && s.step_count() < start_step_ + config_.ramp_steps;
+  }
+
+  void before_step(Simulation& s) override {
+    if (ramping_ && s.step_count() >= start_step_)
+      s.set_wall_velocity(wall_, ramped_velocity(config_.velocity, s.step_count() - start_step_, config_.ramp_steps));
+  }
+
+  void after_step(const Simulation& s) override {
+    const Wall& pile = s.walls()[wall_];
+    tip_sum_ += facets_force(pile, tip_);
+    inner_sum_ += facets_force(pile, inner_);
+    outer_sum_ += facets_force(pile, outer_);
+  }
+
+  void end_advance(Simulation& s) override {
+    if (!waiting_ || !pile_may_start(*config_.start_when, s.step_count(), config_.start_step, measure(s).unbalanced_force_ratio)) return;
+    start_step_ = s.step_count();
+    s.set_wall_velocity(wall_, ramped_velocity(config_.velocity, 0, config_.ramp_steps));
+    waiting_ = false;
+    std::cerr << "dem_server: pile starts at step " << s.step_count() << " (pile.start_when met)" << std::endl;
+  }
+
+  void averages(const Simulation& /*s*/, const AdvanceSums& sums, nlohmann::json& out) override {
+    const double inv_n = sums.inv_steps;
+    const double total = -dot(inv_n * sums.wall_force[wall_], direction());
+    const double tip = -dot(inv_n * tip_sum_, direction());
+    out["pile_force_n"] = total;
+    out["pile_tip_force_n"] = tip;
+    out["pile_shaft_force_n"] = total - tip;
+    if (!inner_.empty()) {  // an open tube: each shaft from its own facets (their sum is tested against the total)
+      out["pile_inner_shaft_force_n"] = -dot(inv_n * inner_sum_, direction());
+      out["pile_outer_shaft_force_n"] = -dot(inv_n * outer_sum_, direction());
+    }
+    tip_sum_ = inner_sum_ = outer_sum_ = Vec3{};
+  }
+
+  void monitors(const Simulation& s, nlohmann::json& out) const override {
+    const Vec3 moved = s.walls()[wall_].vertices.front() - reference_;
+    out["pile_displacement_m"] = dot(moved, direction());
+    for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
+      if (!out.contains(force)) out[force] = 0.0;
+    if (inner_.empty()) return;
+    for (const char* force : {"pile_inner_shaft_force_n", "pile_outer_shaft_force_n"})
+      if (!out.contains(force)) out[force] = 0.0;
+    const PlugColumn plug = plug_column(s.particles(), config_.geometry, config_.geometry.tip_z + moved.z);
+    out["pile_plug_length_m"] = plug.length;
+    out["pile_plug_particles"] = plug.particles;
+  }
+
+  // Whether the pile still waits for pile.start_when, and the step it started at.
+  void save_state(StateWriter& out) const override {
+    out.value(waiting_);
+    out.value(start_step_);
+  }
+  void load_state(StateReader& in) override {
+    in.value(waiting_);
+    in.value(start_step_);
+  }
+
+ private:
+  /// Unit vector of the pile's motion (its velocity direction; -z if it does not move).
+  [[nodiscard]] Vec3 direction() const {
+    const double speed = norm(config_.velocity);
+    return speed > 0.0 ? (1.0 / speed) * config_.velocity : Vec3{0.0, 0.0, -1.0};
+  }
+
+  PileConfig config_;
+  std::size_t wall_ = 0;            ///< the pile among the walls
+  Vec3 reference_;                  ///< m, a pile vertex at the end of preparation
+  std::vector<std::size_t> tip_;    ///< facets of the flat end (an open tube's annulus)
+  std::vector<std::size_t> inner_;  ///< an open tube's inner-shaft facets (empty for a closed pile)
+  std::vector<std::size_t> outer_;  ///< an open tube's outer-shaft facets
+  bool waiting_ = false;            ///< pile.start_when given and not yet met
+  std::int64_t start_step_ = 0;     ///< first moving step (start_step, or when start_when was met)
+  bool ramping_ = false;            ///< this advance sets the ramped velocity
+  Vec3 tip_sum_, inner_sum_, outer_sum_;
+};
+
+}  // namespace
+
+std::unique_ptr<LoadingProtocol> make_pile_loading(const DemConfig& config) {
+  return config.pile ? std::make_unique<PileLoading>(*config.pile) : nullptr;
+}
+
+void declare_pile_monitors(nlohmann::json& units) {
+  for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n", "pile_inner_shaft_force_n", "pile_outer_shaft_force_n"})
+    units[force] = unit::newton;
+  units["pile_plug_length_m"] = unit::metre;
+  units["pile_plug_particles"] = unit::dimensionless;
+  units["pile_displacement_m"] = unit::metre;
+}
+
+}  // namespace dfc::dem
