@@ -246,19 +246,28 @@ def ring_mean(grid, r_edges, z_edges, r_range, z_range):
 
 def force_balance(run):
     """Vertical forces on the particles averaged over the loading (h > 0.5 mm): pile, floor,
-    coupling wall (the FDM) and weight; their sum is the rate of change of the particles'
-    momentum plus the local damping force, which no boundary carries."""
+    coupling wall (the FDM), weight and the local damping force (which no boundary carries);
+    their sum is the rate of change of the particles' momentum (SPEC.md §6.3)."""
     s = run.series
     pile = -s["dem_wall_pile_force_n"][:, 2]
-    floor = -s["dem_wall_floor_force_n"][:, 2]
+    floor = -s["dem_wall_floor_force_n"][:, 2] if "dem_wall_floor_force_n" in s else np.zeros_like(pile)
     interface = s["dem_interface_force_reaction"][:, 2]
     weight = -s["dem_total_weight_n"]
+    damping = s["dem_damping_force_n"][:, 2] if "dem_damping_force_n" in s else np.zeros_like(pile)
     loading = run.h > 0.5e-3
-    residual = pile + floor + interface + weight
-    return {"pile_n": float(np.mean(pile[loading])), "floor_n": float(np.mean(floor[loading])),
-            "coupling_wall_n": float(np.mean(interface[loading])), "weight_n": float(np.mean(weight[loading])),
-            "residual_n": float(np.mean(residual[loading])),
-            "residual_over_pile_plus_weight": float(np.mean(residual[loading]) / np.mean(np.abs(pile[loading]) - weight[loading]))}
+    boundaries = pile + floor + interface + weight
+    out = {"pile_n": float(np.mean(pile[loading])), "floor_n": float(np.mean(floor[loading])),
+           "coupling_wall_n": float(np.mean(interface[loading])), "weight_n": float(np.mean(weight[loading])),
+           "damping_n": float(np.mean(damping[loading])),
+           "boundaries_residual_n": float(np.mean(boundaries[loading])),
+           "damping_over_pile": float(np.mean(damping[loading]) / np.mean(np.abs(pile[loading])))}
+    if "dem_particle_momentum_n_s" in s:
+        t = s["time_s"]
+        rate = np.diff(s["dem_particle_momentum_n_s"][:, 2]) / np.diff(t)
+        closure = rate - (boundaries[1:] + damping[1:])
+        out["momentum_balance_residual_over_pile_plus_weight"] = float(
+            np.max(np.abs(closure[loading[1:]])) / np.mean(np.abs(pile[loading]) - weight[loading]))
+    return out
 
 
 def analyse(run, out, figures):

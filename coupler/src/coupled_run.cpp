@@ -275,6 +275,7 @@ class RunRecorder {
   /// suffix (SPEC.md §6.3 naming), stored marked as a guess.
   static std::string unit_guessed_from_name(const std::string& name) {
     const auto ends = [&](std::string_view suffix) { return name.ends_with(suffix); };
+    if (ends("_n_s")) return protocol::unit::newton_second;
     if (ends("_s")) return protocol::unit::second;
     if (ends("_m")) return protocol::unit::metre;
     if (ends("_n")) return protocol::unit::newton;

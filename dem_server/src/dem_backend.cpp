@@ -144,6 +144,8 @@ nlohmann::json DemBackend::monitor_units() const {
                             "bonds_broken_tension", "bonds_broken_shear"})
     units[count] = dimensionless;
   units["total_weight_n"] = newton;
+  units["damping_force_n"] = newton;
+  units["particle_momentum_n_s"] = newton_second;
   units["dt_critical_s"] = second;
   for (const LoadingProtocolEntry& entry : loading_protocol_registry()) entry.declare_monitors(units);
   for (const Wall& wall : simulation().walls()) {
@@ -239,7 +241,7 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   const auto& walls = s.walls();
   std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
-  Vec3 reaction_sum;
+  Vec3 reaction_sum, damping_sum;
   for (const auto& protocol : model_.loading) protocol->before_advance(s, request.n_steps);
   for (std::int64_t step = 0; step < request.n_steps; ++step) {
     for (const auto& protocol : model_.loading) protocol->before_step(s);
@@ -250,6 +252,7 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
       s.step(request.dt, step + 1 < request.n_steps ? ContactRecord::gathered_only : ContactRecord::complete);
     }
     for (const auto& protocol : model_.loading) protocol->after_step(s);
+    damping_sum += s.damping_force_total();
     for (std::size_t w = 0; w < walls.size(); ++w) {
       wall_force_sum[w] += walls[w].force;
       wall_moment_sum[w] += walls[w].moment;
@@ -272,6 +275,7 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["wall_" + walls[w].name + "_moment_nm"] = to_json(inv_n * wall_moment_sum[w]);
   }
   for (const auto& protocol : model_.loading) protocol->averages(s, {wall_force_sum, inv_n}, averages_);
+  if (s.settings().local_damping != 0.0) averages_["damping_force_n"] = to_json(inv_n * damping_sum);
   if (interface_wall_) {
     double power = 0.0;
     for (std::size_t v = 0; v < node_force_sum.size(); ++v) {
@@ -297,6 +301,7 @@ nlohmann::json DemBackend::monitors() {
   out["contact_count"] = m.contact_count();
   out["coordination_number"] = m.coordination_number;
   out["total_weight_n"] = m.total_weight;
+  out["particle_momentum_n_s"] = to_json(s.momentum());
   out["dt_critical_s"] = s.critical_timestep();
   if (s.settings().particle_law.bonded()) {  // new monitors for bonded laws only: unbonded runs keep their exact set
     const BondCounts bonds = s.bond_counts();

@@ -135,30 +135,40 @@ TEST(OpenPile, DamageConcentratesBelowTheAnnulus) {
   EXPECT_GT(below / below_n, 3.0 * far / far_n);
 }
 
-TEST(OpenPile, VerticalForcesOnTheParticlesBalanceAtRestAndAreReportedUnderLoading) {
-  // Pile + floor + coupling wall (the FDM) + weight on the particles: at the
-  // generation's equilibrium, just before the pile moves, they balance within
-  // 1 % of the weight. Under loading the residual is the particles' momentum
-  // rate plus the local damping force, which no boundary carries
-  // (docs/open_pile.md §4 reports it; not asserted).
+TEST(OpenPile, VerticalForcesOnTheParticlesBalanceTheirMomentumChange) {
+  // The particles' vertical momentum balance (SPEC.md §6.3) per exchange:
+  //   dP/dt = -pile - floor + coupling wall (the FDM) - weight + local damping.
+  // Every term is an average over the same steps, so the balance closes to
+  // round-off (1e-6 of pile force + weight leaves decades). At the
+  // generation's equilibrium, just before the pile moves, the boundaries
+  // alone carry the weight within 1 %. Under loading the damping force is
+  // the part of the resistance no boundary carries: reported (the share
+  // docs/open_pile.md §4 discusses), not asserted.
   const auto pile = series(results(), "dem_wall_pile_force_n");
   const auto floor = series(results(), "dem_wall_floor_force_n");
   const auto interface = series(results(), "dem_interface_force_reaction");
   const auto weight = series(results(), "dem_total_weight_n");
+  const auto damping = series(results(), "dem_damping_force_n");
+  const auto momentum = series(results(), "dem_particle_momentum_n_s");
+  const auto time = series(results(), "time_s");
   const auto moved = series(results(), "dem_pile_displacement_m");
-  const auto residual = [&](std::size_t k) { return -pile[3 * k + 2] - floor[3 * k + 2] + interface[3 * k + 2] - weight[k]; };
+  const auto boundaries = [&](std::size_t k) { return -pile[3 * k + 2] - floor[3 * k + 2] + interface[3 * k + 2] - weight[k]; };
   const auto first = std::size_t(std::find_if(moved.begin(), moved.end(), [](double d) { return d > 0.0; }) - moved.begin());
   ASSERT_GT(first, 1u);
-  EXPECT_LT(std::abs(residual(first - 1)), 0.01 * weight[first - 1]);
-  double sum = 0.0, load = 0.0;
-  int n = 0;
-  for (std::size_t k = first; k < moved.size(); ++k) {
-    sum += residual(k);
-    load += std::abs(pile[3 * k + 2]) + weight[k];
-    ++n;
+  EXPECT_LT(std::abs(boundaries(first - 1)), 0.01 * weight[first - 1]);
+  double worst = 0.0, damping_sum = 0.0, load = 0.0;
+  for (std::size_t k = 1; k < moved.size(); ++k) {
+    const double rate = (momentum[3 * k + 2] - momentum[3 * (k - 1) + 2]) / (time[k] - time[k - 1]);
+    const double scale = std::abs(pile[3 * k + 2]) + weight[k];
+    worst = std::max(worst, std::abs(rate - boundaries(k) - damping[3 * k + 2]) / scale);
+    if (k >= first) {
+      damping_sum += damping[3 * k + 2];
+      load += std::abs(pile[3 * k + 2]);
+    }
   }
-  std::cout << "at rest: residual " << residual(first - 1) << " N of weight " << weight[first - 1] << " N; under loading: mean residual "
-            << sum / n << " N, " << sum / load << " of pile force + weight\n";
+  EXPECT_LT(worst, 1e-6);
+  std::cout << "momentum balance closes to " << worst << " of pile force + weight; under loading the local damping force is "
+            << damping_sum / load << " of the pile force\n";
 }
 
 }  // namespace

@@ -59,15 +59,16 @@ class PileRunTest(unittest.TestCase):
         guess, and the name suffixes agree with what was declared."""
         run = self.run_results
         rows = len(run.series("time_s").values)
-        suffix_units = {"_pa": "Pa", "_n": "N", "_m": "m", "_nm": "N m", "_j": "J", "_w": "W", "_s": "s"}
+        suffix_units = {"_pa": "Pa", "_n": "N", "_m": "m", "_nm": "N m", "_j": "J", "_w": "W", "_s": "s", "_n_s": "N s"}
         for name in run.series_names:
             series = run.series(name)
             with self.subTest(column=name):
                 self.assertFalse(series.unit_guessed)
                 self.assertEqual(series.values.shape[0], rows)
-                for suffix, unit in suffix_units.items():
+                for suffix in sorted(suffix_units, key=len, reverse=True):  # the longest match: _n_s before _s
                     if name.endswith(suffix):
-                        self.assertEqual(series.unit, unit)
+                        self.assertEqual(series.unit, suffix_units[suffix])
+                        break
 
     def test_wall_force_is_a_vector_per_exchange(self):
         run = self.run_results

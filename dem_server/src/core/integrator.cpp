@@ -35,7 +35,9 @@ MotionReport integrate(ParticleStore& p, const Incidence& incidence, const Conta
     // nonzero v; with v = +-0, sgn(v) = 0 and the product is +0), so the sign
     // tests are skipped: in a jittering packing they are random branches.
     if (damped) {
-      v += (dt / p.mass[i]) * local_damping(force, v, s.local_damping);
+      const Vec3 damped_force = local_damping(force, v, s.local_damping);
+      if (!s.damping_force.empty()) s.damping_force[i] = damped_force - force;
+      v += (dt / p.mass[i]) * damped_force;
       w += (dt / p.inertia[i]) * local_damping(moment, w, s.local_damping);
     } else {
       v += (dt / p.mass[i]) * force;

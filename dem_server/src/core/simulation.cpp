@@ -315,8 +315,9 @@ void Simulation::step(double dt, ContactRecord record) {
         << critical_timestep() << " s (or a smaller fraction of it), softer contacts or slower walls";
     throw SolverError(msg.str());
   }
+  if (settings_.local_damping != 0.0) damping_force_.resize(particles_.size());
   const MotionReport motion =
-      integrate_motion(particles_, incidence_, outputs_, reference_positions_, {dt, settings_.gravity, settings_.local_damping}, threads_);
+      integrate_motion(particles_, incidence_, outputs_, reference_positions_, {dt, settings_.gravity, settings_.local_damping, damping_force_}, threads_);
   if (!motion.finite)
     throw SolverError("a particle position or velocity became non-finite at step " + std::to_string(step_) +
                       ": the run is unstable; reduce the time step");
@@ -336,6 +337,18 @@ void Simulation::step(double dt, ContactRecord record) {
   // and a facet by max|dx| + max|dx_wall|; either must stay below the skin.
   const double max_particle = std::sqrt(motion.max_displacement2);
   if (2.0 * max_particle + affine_approach_ >= skin_ || max_particle + max_wall_displacement_ >= skin_) stale_ = true;
+}
+
+Vec3 Simulation::damping_force_total() const {
+  Vec3 total;  // in slot order, on one thread: the same bits whatever the thread count
+  for (const Vec3& f : damping_force_) total += f;
+  return total;
+}
+
+Vec3 Simulation::momentum() const {
+  Vec3 total;
+  for (std::size_t i = 0; i < particles_.size(); ++i) total += particles_.mass[i] * particles_.velocity[i];
+  return total;
 }
 
 void Simulation::run(std::int64_t steps, double dt) {

@@ -211,6 +211,7 @@ struct SimulationLayout {
   bool outputs_complete_;
   Incidence incidence_;
   std::vector<Vec3> reference_positions_;
+  std::vector<Vec3> damping_force_;
   std::vector<std::vector<Vec3>> reference_vertices_;
   double max_wall_displacement_;
   std::int64_t step_;
@@ -265,6 +266,7 @@ void Simulation::transfer_state(Archive& a, Self& s) {
   a.vector(s.incidence_.direct);
   a.tag("verlet");
   a.vector(s.reference_positions_);
+  a.vector(s.damping_force_);
   std::size_t references = s.reference_vertices_.size();
   a.value(references);
   if constexpr (reading<Archive>) {

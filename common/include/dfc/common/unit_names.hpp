@@ -8,6 +8,7 @@ inline constexpr const char* second = "s";
 inline constexpr const char* metre = "m";
 inline constexpr const char* newton = "N";
 inline constexpr const char* newton_metre = "N m";
+inline constexpr const char* newton_second = "N s";
 inline constexpr const char* pascal = "Pa";
 inline constexpr const char* joule = "J";
 inline constexpr const char* watt = "W";

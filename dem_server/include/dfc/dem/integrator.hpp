@@ -32,6 +32,9 @@ struct MotionSettings {
   double dt = 0.0;            ///< s
   Vec3 gravity;               ///< m/s^2
   double local_damping = 0.0; ///< alpha in [0, 1)
+  /// When not empty (one per particle): each particle's damping force of
+  /// this step, F_d - F (N), for the momentum balance (Simulation::damping_force_total).
+  std::span<Vec3> damping_force;
 };
 
 struct MotionReport {

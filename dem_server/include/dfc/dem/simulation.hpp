@@ -128,6 +128,14 @@ class Simulation {
   [[nodiscard]] const ParticleStore& particles() const noexcept { return particles_; }
   [[nodiscard]] const std::vector<Wall>& walls() const noexcept { return walls_; }
   [[nodiscard]] const PairContacts& pair_contacts() const noexcept { return pairs_; }
+  /// N, the sum over particles of the local-damping force of the last step
+  /// (F_d - F, integrator.hpp; zero without damping). Local damping is a
+  /// force on each particle that no wall or continuum carries: the momentum
+  /// balance of the particles is  dP/dt = weight + wall and coupling
+  /// reactions + this.
+  [[nodiscard]] Vec3 damping_force_total() const;
+  /// N s, the particles' momentum sum of m v (translational velocities of the last step).
+  [[nodiscard]] Vec3 momentum() const;
   [[nodiscard]] const WallContacts& wall_contacts(std::size_t wall) const { return wall_contacts_.at(wall); }
   /// Logic error after a step that recorded only the gathered outputs.
   [[nodiscard]] const ContactOutputs& contact_outputs() const;
@@ -199,6 +207,7 @@ class Simulation {
   bool outputs_complete_ = true;  ///< false after a step with ContactRecord::gathered_only
   Incidence incidence_;
   std::vector<Vec3> reference_positions_;                 ///< particle positions at the last rebuild
+  std::vector<Vec3> damping_force_;                       ///< N, per slot: local-damping force of the last step (empty undamped)
   std::vector<std::vector<Vec3>> reference_vertices_;     ///< wall vertices at the last rebuild
   double max_wall_displacement_ = 0.0;                    ///< m, since the last rebuild
 
