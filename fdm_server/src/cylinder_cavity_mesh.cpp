@@ -8,12 +8,29 @@
 #include "dfc/fdm/grading.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
 #include "dfc/fdm/mesh_quality.hpp"
+#include "disc_ogrid.hpp"
 #include "structured_mesh.hpp"
 
 namespace dfc::fdm {
 
 std::vector<double> graded_radii(const CylinderCavitySpec& spec) {
   return geometric_spacing(spec.inner_radius, spec.outer_radius, spec.zones_radial, spec.grading_ratio);
+}
+
+Index cavity_floor_level(const CylinderCavitySpec& spec) {
+  if (!spec.cavity_floor_z) return 0;
+  const double floor = *spec.cavity_floor_z;
+  if (!(floor > spec.z_bottom && floor < spec.z_bottom + spec.height))
+    throw UserError("cylinder_cavity: the cavity's floor must lie strictly between z_bottom and z_bottom + height");
+  if (spec.angle_deg != 360.0) throw UserError("cylinder_cavity: a cavity floor (a solid base) needs the full circle, angle_deg 360");
+  if (spec.zones_around % 4 != 0) throw UserError("cylinder_cavity: a cavity floor (a solid base) needs zones_around to be a multiple of 4");
+  // The layers are uniform, height / zones_vertical: the floor must be one of their levels.
+  const double layers = (floor - spec.z_bottom) / spec.height * double(spec.zones_vertical);
+  const double level = std::round(layers);
+  if (std::abs(layers - level) > 1e-9 * double(spec.zones_vertical) || level < 1.0 || level >= double(spec.zones_vertical))
+    throw UserError("cylinder_cavity: the cavity's floor must lie on a zone level, z_bottom + k height / zones_vertical for k in 1.." +
+                    std::to_string(spec.zones_vertical - 1));
+  return Index(level);
 }
 
 Mesh make_cylinder_cavity(const CylinderCavitySpec& spec) {
@@ -25,6 +42,7 @@ Mesh make_cylinder_cavity(const CylinderCavitySpec& spec) {
   if (spec.zones_radial < 1 || spec.zones_around < (full_circle ? 3u : 1u) || spec.zones_vertical < 1)
     throw UserError("cylinder_cavity: need zones_radial >= 1, zones_around >= 3 (>= 1 for a sector), zones_vertical >= 1");
   if (!(spec.grading_ratio > 0.0)) throw UserError("cylinder_cavity: grading_ratio must be > 0");
+  const Index floor_level = spec.cavity_floor_z ? cavity_floor_level(spec) : 0;
 
   const Index nr = spec.zones_radial;
   const Index nt = spec.zones_around;
@@ -54,7 +72,18 @@ Mesh make_cylinder_cavity(const CylinderCavitySpec& spec) {
     return i + (nr + 1) * ((j % rings_around) + rings_around * k);
   };
   detail::add_lattice_zones(mesh, counts, node);
-  detail::add_lattice_face_group(mesh, "inner", counts, node, 0, 0);
+  if (spec.cavity_floor_z) {
+    // The cavity's side is the annulus's inner face above the floor level; the
+    // O-grid fills the disc below it, and its top is the cavity's floor.
+    const std::array<Index, 3> above = {nr, nt, nz - floor_level};
+    const detail::LatticeNodeIndex node_above = [&node, floor_level](Index i, Index j, Index k) { return node(i, j, k + floor_level); };
+    detail::add_lattice_face_group(mesh, "inner", above, node_above, 0, 0);
+    detail::add_lattice_face_group(mesh, "cavity_side", above, node_above, 0, 0);
+    const detail::CircleNode circle = [&node](Index j, Index k) { return node(0, j, k); };
+    detail::add_disc_ogrid(mesh, nt, floor_level, circle, "bottom", {"inner", "cavity_floor"});
+  } else {
+    detail::add_lattice_face_group(mesh, "inner", counts, node, 0, 0);
+  }
   detail::add_lattice_face_group(mesh, "outer", counts, node, 0, 1);
   detail::add_lattice_face_group(mesh, "bottom", counts, node, 2, 0);
   detail::add_lattice_face_group(mesh, "top", counts, node, 2, 1);
