@@ -247,10 +247,11 @@ def ring_mean(grid, r_edges, z_edges, r_range, z_range):
 def force_balance(run):
     """Vertical forces on the particles averaged over the loading (h > 0.5 mm): pile, floor,
     coupling wall (the FDM) and weight; their sum is the rate of change of the particles'
-    momentum plus the local damping force, which no boundary carries."""
+    momentum plus the local damping force, which no boundary carries. A core standing on the
+    FDM's base (no DEM floor wall) has a floor force of zero: the coupling wall carries it."""
     s = run.series
     pile = -s["dem_wall_pile_force_n"][:, 2]
-    floor = -s["dem_wall_floor_force_n"][:, 2]
+    floor = -s["dem_wall_floor_force_n"][:, 2] if "dem_wall_floor_force_n" in s else np.zeros_like(pile)
     interface = s["dem_interface_force_reaction"][:, 2]
     weight = -s["dem_total_weight_n"]
     loading = run.h > 0.5e-3
