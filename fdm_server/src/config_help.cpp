@@ -18,8 +18,9 @@ std::string fdm_config_help() {
                      "grading_ratio": (dr[k+1]/dr[k] counted outwards, > 1 = finer at the cavity, default 1),
                      "angle_deg": (the sector 0..angle_deg, in (0, 360], default 360),
                      "max_aspect_ratio": (largest longest/shortest zone edge allowed, >= 1, default 10),
-                     "cavity_floor_z_m": (m, optional: the cavity ends there, a solid base below it;
-                                          in (z_bottom, z_bottom + H), on a zone level z_bottom + k H/zones_vertical;
+                     "cavity_floor_z_m": (m, default z_bottom_m = the cavity through the whole height;
+                                          above it: the cavity ends there, a solid base below it;
+                                          below z_bottom + H, on a zone level z_bottom + k H/zones_vertical;
                                           needs angle_deg 360 and zones_around a multiple of 4)}
                       face groups: inner outer bottom top, and theta_min theta_max for a sector;
                       with a cavity floor "inner" is the cavity's side and floor, also apart as

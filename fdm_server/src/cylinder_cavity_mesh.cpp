@@ -3,6 +3,8 @@
 // e_r × e_θ = e_z, so the FLAC3D corner order gives positive tetrahedra.
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <string>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/fdm/grading.hpp"
@@ -17,20 +19,47 @@ std::vector<double> graded_radii(const CylinderCavitySpec& spec) {
   return geometric_spacing(spec.inner_radius, spec.outer_radius, spec.zones_radial, spec.grading_ratio);
 }
 
+namespace {
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// The floor's level k as a real number: (floor - z_bottom) / layer thickness.
+double floor_layers(const CylinderCavitySpec& spec) {
+  return (*spec.cavity_floor_z - spec.z_bottom) / (spec.height / double(spec.zones_vertical));
+}
+
+}  // namespace
+
+std::optional<CavityFloorProblem> cavity_floor_problem(const CylinderCavitySpec& spec) {
+  if (!spec.cavity_floor_z) return std::nullopt;
+  const double floor = *spec.cavity_floor_z, top = spec.z_bottom + spec.height;
+  if (!(floor > spec.z_bottom && floor < top))
+    return CavityFloorProblem{"cavity_floor_z_m", "the cavity's floor must lie above z_bottom_m (" + format_number(spec.z_bottom) +
+                                                      ") and below z_bottom_m + height_m (" + format_number(top) +
+                                                      "); z_bottom_m (the default) for a cavity through the whole height"};
+  if (spec.angle_deg != 360.0)
+    return CavityFloorProblem{"angle_deg", "a cavity floor (the solid base below it) needs the full circle: angle_deg 360"};
+  if (spec.zones_around % 4 != 0)
+    return CavityFloorProblem{"zones_around", "a cavity floor needs zones_around to be a multiple of 4 (the O-grid of the base takes a quarter "
+                                              "on each side of its core), got " + std::to_string(spec.zones_around)};
+  // The layers are uniform, height / zones_vertical: the floor must be one of their levels.
+  const double layers = floor_layers(spec), layer = spec.height / double(spec.zones_vertical);
+  if (std::abs(layers - std::round(layers)) > 1e-9 * double(spec.zones_vertical))
+    return CavityFloorProblem{"cavity_floor_z_m", "the cavity's floor must lie on a zone level (the layers are height_m / zones_vertical = " +
+                                                      format_number(layer) + " m thick): the nearest are " +
+                                                      format_number(spec.z_bottom + std::floor(layers) * layer) + " and " +
+                                                      format_number(spec.z_bottom + std::ceil(layers) * layer) + " m; change it or zones_vertical"};
+  return std::nullopt;
+}
+
 Index cavity_floor_level(const CylinderCavitySpec& spec) {
   if (!spec.cavity_floor_z) return 0;
-  const double floor = *spec.cavity_floor_z;
-  if (!(floor > spec.z_bottom && floor < spec.z_bottom + spec.height))
-    throw UserError("cylinder_cavity: the cavity's floor must lie strictly between z_bottom and z_bottom + height");
-  if (spec.angle_deg != 360.0) throw UserError("cylinder_cavity: a cavity floor (a solid base) needs the full circle, angle_deg 360");
-  if (spec.zones_around % 4 != 0) throw UserError("cylinder_cavity: a cavity floor (a solid base) needs zones_around to be a multiple of 4");
-  // The layers are uniform, height / zones_vertical: the floor must be one of their levels.
-  const double layers = (floor - spec.z_bottom) / spec.height * double(spec.zones_vertical);
-  const double level = std::round(layers);
-  if (std::abs(layers - level) > 1e-9 * double(spec.zones_vertical) || level < 1.0 || level >= double(spec.zones_vertical))
-    throw UserError("cylinder_cavity: the cavity's floor must lie on a zone level, z_bottom + k height / zones_vertical for k in 1.." +
-                    std::to_string(spec.zones_vertical - 1));
-  return Index(level);
+  if (const auto problem = cavity_floor_problem(spec)) throw UserError("cylinder_cavity: " + problem->message);
+  return Index(std::lround(floor_layers(spec)));
 }
 
 Mesh make_cylinder_cavity(const CylinderCavitySpec& spec) {

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/fdm/initial_stress.hpp"
@@ -57,35 +56,6 @@ Mesh read_box(ConfigReader& cfg) {
   return make_box(spec);
 }
 
-std::string format_number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
-// The cavity's floor (a solid base below it), checked here so that each
-// error names the key to change (cavity_floor_level repeats the checks).
-double read_cavity_floor(ConfigReader& cfg, const CylinderCavitySpec& spec) {
-  const double top = spec.z_bottom + spec.height;
-  const double floor = cfg.number("cavity_floor_z_m");
-  if (!(floor > spec.z_bottom && floor < top))
-    cfg.fail("cavity_floor_z_m", "the cavity's floor must lie strictly between z_bottom_m (" + format_number(spec.z_bottom) +
-                                     ") and z_bottom_m + height_m (" + format_number(top) + "); omit the key for a cavity through the whole height");
-  if (spec.angle_deg != 360.0) cfg.fail("angle_deg", "a cavity floor (the solid base below it) needs the full circle: angle_deg 360");
-  if (spec.zones_around % 4 != 0)
-    cfg.fail("zones_around", "a cavity floor needs zones_around to be a multiple of 4 (the O-grid of the base takes a quarter on each side of its "
-                             "core), got " + std::to_string(spec.zones_around));
-  const double layer = spec.height / double(spec.zones_vertical);
-  const double level = (floor - spec.z_bottom) / layer;
-  if (std::abs(level - std::round(level)) > 1e-9 * double(spec.zones_vertical)) {
-    const double below = spec.z_bottom + std::floor(level) * layer, above = spec.z_bottom + std::ceil(level) * layer;
-    cfg.fail("cavity_floor_z_m", "the cavity's floor must lie on a zone level (the layers are height_m / zones_vertical = " + format_number(layer) +
-                                     " m thick): the nearest are " + format_number(below) + " and " + format_number(above) +
-                                     " m; change it or zones_vertical");
-  }
-  return floor;
-}
-
 Mesh read_cylinder_cavity(ConfigReader& cfg) {
   CylinderCavitySpec spec;
   spec.inner_radius = cfg.positive("inner_radius_m");
@@ -100,7 +70,13 @@ Mesh read_cylinder_cavity(ConfigReader& cfg) {
   spec.angle_deg = cfg.number("angle_deg", 360.0, Bounds{0.0, 360.0, true});
   if (spec.angle_deg == 360.0 && spec.zones_around < 3) cfg.fail("zones_around", "the full circle needs zones_around >= 3");
   spec.max_aspect_ratio = cfg.number("max_aspect_ratio", kDefaultMaxAspectRatio, Bounds{1.0});
-  if (cfg.has("cavity_floor_z_m")) spec.cavity_floor_z = read_cavity_floor(cfg, spec);
+  // A floor at z_bottom_m (the default) is no floor: the cavity runs through
+  // the whole height. Scenarios that include one with a base say so (an
+  // include cannot delete a key).
+  if (const double floor = cfg.number("cavity_floor_z_m", spec.z_bottom); floor != spec.z_bottom) {
+    spec.cavity_floor_z = floor;
+    if (const auto problem = cavity_floor_problem(spec)) cfg.fail(problem->key, problem->message);
+  }
   check_zone_total(cfg, "zones_radial", double(spec.zones_radial) * double(spec.zones_around) * double(spec.zones_vertical));
   try {
     return make_cylinder_cavity(spec);

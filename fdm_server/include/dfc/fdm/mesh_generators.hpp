@@ -6,6 +6,7 @@
 #include <array>
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "dfc/fdm/mesh.hpp"
 
@@ -82,10 +83,20 @@ struct SphereCavityOctantSpec {
 /// = inner radius, last = outer radius exactly).
 [[nodiscard]] std::vector<double> graded_radii(const CylinderCavitySpec& spec);
 
+/// What is wrong with a cavity floor: the scenario key to change (cavity_floor_z_m,
+/// angle_deg or zones_around) and why.
+struct CavityFloorProblem {
+  std::string key;
+  std::string message;
+};
+
+/// The first problem of spec.cavity_floor_z (outside the body, off the zone
+/// levels, on a sector, zones_around not a multiple of 4); none without a floor.
+[[nodiscard]] std::optional<CavityFloorProblem> cavity_floor_problem(const CylinderCavitySpec& spec);
+
 /// The gridpoint level k (1 .. zones_vertical - 1) of spec.cavity_floor_z, the
 /// layers being uniform (z_bottom + k height / zones_vertical); 0 without a
-/// floor. Throws dfc::UserError if the floor is off the levels, outside the
-/// body, on a sector, or zones_around is not a multiple of 4.
+/// floor. Throws dfc::UserError with cavity_floor_problem's message.
 [[nodiscard]] Index cavity_floor_level(const CylinderCavitySpec& spec);
 
 }  // namespace dfc::fdm
