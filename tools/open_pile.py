@@ -247,7 +247,8 @@ def ring_mean(grid, r_edges, z_edges, r_range, z_range):
 def force_balance(run):
     """Vertical forces on the particles averaged over the loading (h > 0.5 mm): pile, floor,
     coupling wall (the FDM), weight and the local damping force (which no boundary carries);
-    their sum is the rate of change of the particles' momentum (SPEC.md §6.3)."""
+    their sum is the rate of change of the particles' momentum (SPEC.md §6.3). A core standing
+    on the FDM's base (no DEM floor wall) has a floor force of zero: the coupling wall carries it."""
     s = run.series
     pile = -s["dem_wall_pile_force_n"][:, 2]
     floor = -s["dem_wall_floor_force_n"][:, 2] if "dem_wall_floor_force_n" in s else np.zeros_like(pile)

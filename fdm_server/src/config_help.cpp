@@ -17,8 +17,14 @@ std::string fdm_config_help() {
                      "zones_around": (>= 3 for 360 deg, >= 1 for a sector), "zones_vertical": (>= 1),
                      "grading_ratio": (dr[k+1]/dr[k] counted outwards, > 1 = finer at the cavity, default 1),
                      "angle_deg": (the sector 0..angle_deg, in (0, 360], default 360),
-                     "max_aspect_ratio": (largest longest/shortest zone edge allowed, >= 1, default 10)}
-                      face groups: inner outer bottom top, and theta_min theta_max for a sector
+                     "max_aspect_ratio": (largest longest/shortest zone edge allowed, >= 1, default 10),
+                     "cavity_floor_z_m": (m, default z_bottom_m = the cavity through the whole height;
+                                          above it: the cavity ends there, a solid base below it;
+                                          below z_bottom + H, on a zone level z_bottom + k H/zones_vertical;
+                                          needs angle_deg 360 and zones_around a multiple of 4)}
+                      face groups: inner outer bottom top, and theta_min theta_max for a sector;
+                      with a cavity floor "inner" is the cavity's side and floor, also apart as
+                      cavity_side cavity_floor
                     {"type": "sphere_cavity_octant", "inner_radius_m": Ri (m), "outer_radius_m": Ro (m, > Ri),
                      "zones_radial": (>= 1), "zones_around": (zones per patch edge, 3 patches, >= 1),
                      "grading_ratio": (default 1), "max_aspect_ratio": (default 10)}

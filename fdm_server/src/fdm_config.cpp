@@ -70,6 +70,13 @@ Mesh read_cylinder_cavity(ConfigReader& cfg) {
   spec.angle_deg = cfg.number("angle_deg", 360.0, Bounds{0.0, 360.0, true});
   if (spec.angle_deg == 360.0 && spec.zones_around < 3) cfg.fail("zones_around", "the full circle needs zones_around >= 3");
   spec.max_aspect_ratio = cfg.number("max_aspect_ratio", kDefaultMaxAspectRatio, Bounds{1.0});
+  // A floor at z_bottom_m (the default) is no floor: the cavity runs through
+  // the whole height. Scenarios that include one with a base say so (an
+  // include cannot delete a key).
+  if (const double floor = cfg.number("cavity_floor_z_m", spec.z_bottom); floor != spec.z_bottom) {
+    spec.cavity_floor_z = floor;
+    if (const auto problem = cavity_floor_problem(spec)) cfg.fail(problem->key, problem->message);
+  }
   check_zone_total(cfg, "zones_radial", double(spec.zones_radial) * double(spec.zones_around) * double(spec.zones_vertical));
   try {
     return make_cylinder_cavity(spec);

@@ -74,6 +74,34 @@ TEST(FdmConfig, NegativeSizeIsNamed) {
   EXPECT_EQ(key_path_of_error(section), "mesh.outer_radius_m");
 }
 
+TEST(FdmConfig, BadCavityFloorsAreNamed) {
+  nlohmann::json section = valid_section();
+  section["coupling"]["group"] = "inner";
+  section["boundaries"] = nlohmann::json::parse(R"([{"group": "bottom", "condition": "fixed"}])");
+  section["mesh"] = nlohmann::json::parse(R"({"type": "cylinder_cavity", "inner_radius_m": 0.5, "outer_radius_m": 2, "height_m": 2,
+                                              "zones_radial": 2, "zones_around": 16, "zones_vertical": 4, "cavity_floor_z_m": 1})");
+  EXPECT_EQ(key_path_of_error(section), "<no error>");
+  for (const double outside : {2.0, -1.0, 3.0}) {
+    section["mesh"]["cavity_floor_z_m"] = outside;
+    EXPECT_EQ(key_path_of_error(section), "mesh.cavity_floor_z_m") << outside;
+  }
+  // At z_bottom_m (the default) the floor is no floor: the annulus as without the key.
+  section["mesh"]["cavity_floor_z_m"] = 0.0;
+  const std::size_t annulus = load_fdm_model(section).solver.mesh().gridpoint_count();
+  section["mesh"].erase("cavity_floor_z_m");
+  EXPECT_EQ(load_fdm_model(section).solver.mesh().gridpoint_count(), annulus);
+  section["mesh"]["cavity_floor_z_m"] = 1.0;
+  EXPECT_GT(load_fdm_model(section).solver.mesh().gridpoint_count(), annulus);
+  section["mesh"]["cavity_floor_z_m"] = 0.7;  // between the levels 0.5 and 1.0
+  EXPECT_EQ(key_path_of_error(section), "mesh.cavity_floor_z_m");
+  section["mesh"]["cavity_floor_z_m"] = 1.5;
+  section["mesh"]["zones_around"] = 18;
+  EXPECT_EQ(key_path_of_error(section), "mesh.zones_around");
+  section["mesh"]["zones_around"] = 16;
+  section["mesh"]["angle_deg"] = 90;
+  EXPECT_EQ(key_path_of_error(section), "mesh.angle_deg");
+}
+
 TEST(FdmConfig, UnknownModelIsNamed) {
   nlohmann::json section = valid_section();
   section["material"]["model"] = "mohr_coulomb_typo";

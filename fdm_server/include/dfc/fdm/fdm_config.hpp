@@ -7,7 +7,8 @@
 //        or {"type": "cylinder_cavity", "inner_radius_m": Ri, "outer_radius_m": Ro (> Ri),
 //            "z_bottom_m": 0, "height_m": H, "zones_radial": nr, "zones_around": nθ (>= 3 for 360°),
 //            "zones_vertical": nz, "grading_ratio": 1 (Δr_{k+1}/Δr_k outwards; > 1 = finer at the cavity),
-//            "angle_deg": 360 (a sector adds groups theta_min/theta_max), "max_aspect_ratio": 10}
+//            "angle_deg": 360 (a sector adds groups theta_min/theta_max), "max_aspect_ratio": 10,
+//            "cavity_floor_z_m": z_bottom_m (above it: the cavity ends there, on a solid O-grid base)}
 //        or {"type": "sphere_cavity_octant", "inner_radius_m", "outer_radius_m", "zones_radial",
 //            "zones_around", "grading_ratio", "max_aspect_ratio"},
 //   "material": {"model": "elastic" | "mohr_coulomb" | "structured_cam_clay", "density_kg_m3": ρ,

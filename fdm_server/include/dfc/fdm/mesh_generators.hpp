@@ -5,6 +5,8 @@
 // around a spherical cavity.
 #include <array>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "dfc/fdm/mesh.hpp"
 
@@ -31,6 +33,14 @@ struct BoxSpec {
 /// "theta_min" (θ = 0, the plane y = 0) and "theta_max" (θ = angle_deg).
 /// Gridpoints lie on the circles (the walls are faceted polygons); a full
 /// circle shares its 0/360° seam gridpoints.
+///
+/// With cavity_floor_z the cavity ends there: below it the body is a solid
+/// cylinder, the disc r <= Ri meshed as an O-grid (disc_ogrid.hpp) conforming
+/// to the annulus. "inner" is then the cavity's whole wall, side and floor
+/// (floor normals up, into the cavity); "cavity_side" and "cavity_floor" are
+/// its two parts; "bottom" spans the whole disc r <= Ro. Needs the full
+/// circle, zones_around a multiple of 4, and the floor on a zone level
+/// (cavity_floor_level).
 struct CylinderCavitySpec {
   double inner_radius = 0.5;    ///< m, > 0
   double outer_radius = 2.0;    ///< m, > inner_radius
@@ -46,6 +56,8 @@ struct CylinderCavitySpec {
   /// Zones with a larger aspect ratio are an error naming them (mesh_quality.hpp);
   /// +∞ disables the check (plane-strain slices one zone thick).
   double max_aspect_ratio = kDefaultMaxAspectRatio;
+  /// m, in (z_bottom, z_bottom + height); absent: the cavity spans the whole height.
+  std::optional<double> cavity_floor_z;
 };
 
 /// One octant (x, y, z >= 0) of the spherical shell Ri <= r <= Ro around a
@@ -70,5 +82,21 @@ struct SphereCavityOctantSpec {
 /// Radii of the radial gridpoint rings of `spec` (zones_radial + 1 values, first
 /// = inner radius, last = outer radius exactly).
 [[nodiscard]] std::vector<double> graded_radii(const CylinderCavitySpec& spec);
+
+/// What is wrong with a cavity floor: the scenario key to change (cavity_floor_z_m,
+/// angle_deg or zones_around) and why.
+struct CavityFloorProblem {
+  std::string key;
+  std::string message;
+};
+
+/// The first problem of spec.cavity_floor_z (outside the body, off the zone
+/// levels, on a sector, zones_around not a multiple of 4); none without a floor.
+[[nodiscard]] std::optional<CavityFloorProblem> cavity_floor_problem(const CylinderCavitySpec& spec);
+
+/// The gridpoint level k (1 .. zones_vertical - 1) of spec.cavity_floor_z, the
+/// layers being uniform (z_bottom + k height / zones_vertical); 0 without a
+/// floor. Throws dfc::UserError with cavity_floor_problem's message.
+[[nodiscard]] Index cavity_floor_level(const CylinderCavitySpec& spec);
 
 }  // namespace dfc::fdm
