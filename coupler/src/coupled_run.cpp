@@ -41,11 +41,18 @@ double scalar_monitor(const nlohmann::json& monitors, const char* name) {
 
 /// True when every participant reported an unbalanced_force_ratio at most
 /// `limit` (a participant that reports none, or NaN, is not in equilibrium).
+/// The largest unbalanced_force_ratio over the participants (NaN if one lacks it).
+double largest_unbalanced_ratio(const std::map<std::string, nlohmann::json>& monitors) {
+  double largest = 0.0;
+  for (const auto& [slot, values] : monitors) {
+    const double ratio = scalar_monitor(values, "unbalanced_force_ratio");
+    if (!(ratio <= largest)) largest = ratio;  // NaN propagates
+  }
+  return largest;
+}
+
 bool every_in_equilibrium(const std::map<std::string, nlohmann::json>& monitors, double limit) {
-  if (monitors.empty()) return false;
-  for (const auto& [slot, values] : monitors)
-    if (!(scalar_monitor(values, "unbalanced_force_ratio") <= limit)) return false;
-  return true;
+  return !monitors.empty() && largest_unbalanced_ratio(monitors) <= limit;
 }
 
 /// True when the number monitor behind time-series column `column`
@@ -650,6 +657,8 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
       detail << "t=" << time << " s";
       if (std::isfinite(pile_force))
         detail << " pile " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, " << pile_force << " N";
+      if (scenario.run.stop_unbalanced_force_ratio)  // a run that stops on equilibrium: how far from it
+        detail << " unbalanced " << largest_unbalanced_ratio(monitors) << " (stop at " << *scenario.run.stop_unbalanced_force_ratio << ")";
       progress.update(done, detail.str());
       if (scenario.run.stop_unbalanced_force_ratio && done >= scenario.run.stop_min_exchanges &&
           every_in_equilibrium(monitors, *scenario.run.stop_unbalanced_force_ratio)) {

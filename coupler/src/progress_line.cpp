@@ -31,7 +31,10 @@ void ProgressLine::update(std::int64_t done, const std::string& detail) {
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const std::int64_t decile = done * 10 / total_;
-  const bool due = terminal_ ? (now - last_print_ > std::chrono::milliseconds(250) || done == total_) : decile != last_decile_;
+  // In a log: every 10 %, and at least once a minute (a run that stops on
+  // equilibrium may end long before its first 10 %).
+  const bool due = terminal_ ? (now - last_print_ > std::chrono::milliseconds(250) || done == total_)
+                             : decile != last_decile_ || now - last_print_ >= std::chrono::seconds(60);
   if (!due) return;
   last_print_ = now;
   last_decile_ = decile;

@@ -1,6 +1,7 @@
 #pragma once
 // ProgressLine: one status line with an ETA for long runs. On a terminal it is
-// rewritten in place; otherwise a line is printed every 10 % so logs stay short.
+// rewritten in place; otherwise a line is printed every 10 % and at least once a minute, so logs
+// stay short and a long run still shows it is alive.
 #include <chrono>
 #include <cstdint>
 #include <iosfwd>
