@@ -5,6 +5,7 @@
 
 #include "dem_test_support.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/dem_backend.hpp"
 #include "dfc/dem/dem_config.hpp"
 #include "dfc/dem/model_layout.hpp"
 #include "dfc/dem/ucs_platens.hpp"
@@ -51,6 +52,29 @@ TEST(UcsPlatens, SectionSeatsThePlatensAndDrivesThemAtTheStrainRate) {
   EXPECT_NEAR(top.velocity.z, -0.5 * 2.0 * h0, 1e-12);
   EXPECT_NEAR(bottom.velocity.z, 0.5 * 2.0 * h0, 1e-12);
   EXPECT_NEAR(top.velocity.x, 0.0, 1e-15);
+}
+
+// Without area_m2 the cross-section of a box bed is the x–y bounding box of
+// its spheres (ucs_loading.cpp): the advance-averaged axial_stress_pa equals
+// ((F_top - F_bottom) . z) / (2 A) from the averaged platen forces with that A.
+TEST(UcsPlatens, DerivedAreaTurnsThePlatenForcesIntoTheAxialStress) {
+  const nlohmann::json config = ucs_config();
+  double lo_x = 1e9, lo_y = 1e9, hi_x = -1e9, hi_y = -1e9;
+  for (const auto& s : lay_out_model(parse_dem_config(config)).spheres) {
+    lo_x = std::min(lo_x, s.centre.x - s.radius);
+    lo_y = std::min(lo_y, s.centre.y - s.radius);
+    hi_x = std::max(hi_x, s.centre.x + s.radius);
+    hi_y = std::max(hi_y, s.centre.y + s.radius);
+  }
+  const double area = (hi_x - lo_x) * (hi_y - lo_y);
+  DemBackend backend;
+  const double dt = backend.configure(config)["dt_suggested"].get<double>();
+  nlohmann::json m;
+  for (int k = 0; k < 20; ++k) m = backend.advance({backend.simulation().step_count(), 50, dt, {}}).monitors;
+  const double top = m["wall_top_force_n"][2].get<double>(), bottom = m["wall_bottom_force_n"][2].get<double>();
+  ASSERT_GT(top - bottom, 0.0);  // the closing platens load the bed
+  // The two sides differ only by the order of the same products (round-off).
+  EXPECT_NEAR(m["axial_stress_pa"].get<double>(), (top - bottom) / (2.0 * area), 1e-12 * (top - bottom) / area);
 }
 
 TEST(UcsPlatens, SectionErrorsNameTheKey) {
