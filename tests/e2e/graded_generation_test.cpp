@@ -110,6 +110,14 @@ TEST(GradedGeneration, TwoZonesFilledFromOneRevCarryTheSelfWeightField) {
   EXPECT_NEAR(ring(x, radius, stress, 0.0, 3e-3, surface, 4e-3, 28e-3).porosity, rev, 0.01);
   EXPECT_NEAR(ring(x, radius, stress, 5e-3, 8.2e-3, surface, 4e-3, 28e-3).porosity, rev, 0.01);
 
+  // The profile slices are one REV cell of the coarsest zone high (0.8 mm x
+  // S = 10 = 8 mm: four over the 32 mm body), not one cell of the REV as
+  // prepared at S = 5: a slice spans both zones, and thinner ones average
+  // too few coarse layers (docs/dem_generation.md §4).
+  const auto depth = h5::read_f64(file, dem + "/profile_depth_m");
+  ASSERT_EQ(depth.size(), 4u);
+  EXPECT_NEAR(depth[1] - depth[0], 8e-3, 1e-9);
+
   // The generation and equilibration break no bond, the seam's new ones included.
   EXPECT_EQ(series(results, "dem_bonds_broken_tension").back(), 0.0);
   EXPECT_EQ(series(results, "dem_bonds_broken_shear").back(), 0.0);
