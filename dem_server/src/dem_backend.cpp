@@ -287,7 +287,7 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["wall_" + walls[w].name + "_moment_nm"] = to_json(inv_n * wall_moment_sum[w]);
   }
   for (const auto& protocol : model_.loading) protocol->averages(s, {wall_force_sum, inv_n}, averages_);
-  if (s.settings().local_damping != 0.0) averages_["damping_force_n"] = to_json(inv_n * damping_sum);
+  averages_["damping_force_n"] = to_json(inv_n * damping_sum);  // 0 when undamped: the column stays when a stage turns damping off
   if (interface_wall_) {
     double power = 0.0;
     for (std::size_t v = 0; v < node_force_sum.size(); ++v) {

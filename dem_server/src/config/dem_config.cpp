@@ -167,6 +167,10 @@ PileConfig read_pile(ConfigReader cfg, const ContactLawSetting& wall_contact, do
     when->finish();
   }
   pile.ramp_steps = cfg.integer("ramp_steps", 0, 0);
+  if (cfg.has("local_damping")) {
+    pile.local_damping = cfg.number("local_damping", Bounds{0.0, 1.0});
+    if (*pile.local_damping >= 1.0) cfg.fail("local_damping", "must be below 1 (1 would cancel every driving force)");
+  }
   pile.contact = read_optional_contact(cfg, wall_contact, scale_factor);
   cfg.finish();
   return pile;
@@ -370,7 +374,8 @@ std::string dem_config_help() {
   pile            {"radius_m", "tip_z_m", "length_m", "sides":24, "axis_xy_m":[0,0], "velocity_m_s":[0,0,0],
                    "start_step":0, "start_when":{"unbalanced_force_ratio": r} (rest until, at or after start_step,
                    the unbalanced-force ratio is at most r: loading after equilibrium), "ramp_steps":0 (the
-                   velocity rises linearly from 0 over this many steps), "contact"}  closed
+                   velocity rises linearly from 0 over this many steps), "local_damping" (alpha from the pile's first
+                   moving step; default: damping.local throughout), "contact"}  closed
                   cylinder with a flat tip; monitors pile_force_n, pile_tip_force_n, pile_shaft_force_n,
                   pile_displacement_m. With "wall_thickness_m": t (< radius_m) an open-ended tube (the tip
                   is the annulus) that also sends pile_inner_shaft_force_n, pile_outer_shaft_force_n and

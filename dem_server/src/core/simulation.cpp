@@ -339,6 +339,12 @@ void Simulation::step(double dt, ContactRecord record) {
   if (2.0 * max_particle + affine_approach_ >= skin_ || max_particle + max_wall_displacement_ >= skin_) stale_ = true;
 }
 
+void Simulation::set_local_damping(double alpha) {
+  if (!(alpha >= 0.0 && alpha < 1.0)) throw UserError("local damping must be in [0, 1)");
+  settings_.local_damping = alpha;
+  if (alpha == 0.0) damping_force_.clear();  // undamped steps store no damping force: the total is 0, not the last damped step's
+}
+
 Vec3 Simulation::damping_force_total() const {
   Vec3 total;  // in slot order, on one thread: the same bits whatever the thread count
   for (const Vec3& f : damping_force_) total += f;

@@ -36,6 +36,11 @@ class PileLoading final : public LoadingProtocol {
   }
 
   void before_step(Simulation& s) override {
+    // The loading stage's damping from the first moving step; set here each
+    // step rather than once so that a run resumed from a checkpoint (which
+    // restores waiting_ and start_step_, not the settings) has it too.
+    if (config_.local_damping && !waiting_ && s.step_count() >= start_step_ && s.settings().local_damping != *config_.local_damping)
+      s.set_local_damping(*config_.local_damping);
     if (ramping_ && s.step_count() >= start_step_)
       s.set_wall_velocity(wall_, ramped_velocity(config_.velocity, s.step_count() - start_step_, config_.ramp_steps));
   }

@@ -58,6 +58,8 @@ struct PileConfig {
   std::int64_t start_step = 0;
   std::optional<PileStartRule> start_when;  ///< rest until equilibrium (foundation_loading.hpp)
   std::int64_t ramp_steps = 0;              ///< steps over which the velocity rises from 0 (foundation_loading.hpp)
+  /// alpha of local damping from the pile's first moving step (pile_loading.cpp); none: damping.local throughout
+  std::optional<double> local_damping;
   ContactLawSetting contact;
 };
 

@@ -134,6 +134,9 @@ class Simulation {
   /// balance of the particles is  dP/dt = weight + wall and coupling
   /// reactions + this.
   [[nodiscard]] Vec3 damping_force_total() const;
+  /// Changes alpha of local damping from the next step on (a loading stage's
+  /// own damping); UserError outside [0, 1).
+  void set_local_damping(double alpha);
   /// N s, the particles' momentum sum of m v (translational velocities of the last step).
   [[nodiscard]] Vec3 momentum() const;
   [[nodiscard]] const WallContacts& wall_contacts(std::size_t wall) const { return wall_contacts_.at(wall); }
