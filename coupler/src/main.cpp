@@ -93,6 +93,9 @@ int run_command(int argc, char** argv) {
       options.resume = true;
     } else if (arg == "--no-progress") {
       options.progress = false;
+    } else if (arg == "--help" || arg == "-h") {  // `coupler run --help` (and `./vc run --help`) as users type it
+      print_help();
+      return 0;
     } else if (!arg.empty() && arg[0] == '-') {
       throw dfc::UserError("unknown option '" + std::string(arg) + "' (see coupler --help)");
     } else if (scenario_path.empty()) {
