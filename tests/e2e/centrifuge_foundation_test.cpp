@@ -2,7 +2,7 @@
 // Previtali, Ciantia et al. 2023, Fig. 5-7) through the real coupler, DEM and
 // FDM servers. The fast checks run the small variant
 // (tests/e2e/scenarios/centrifuge_pile_small.json: 100 g, packing 1, pushed
-// 4 mm, twice); the g-level check runs the study's 1 g and 100 g runs
+// 6 mm, twice); the g-level check runs the study's 1 g and 100 g runs
 // (centrifuge_pile_glevels.json, ctest label slow). One process runs each
 // group (tests/e2e/CMakeLists.txt), so each scenario runs once.
 #include <gtest/gtest.h>
@@ -116,6 +116,44 @@ TEST(CentrifugeFoundation, BondsBreakFirstBeneathTheTip) {
   const double below = double(below_broken) / below_n, outside = double(far_broken) / far_n;
   std::cout << "broken fraction beneath the tip " << below << " (" << below_n << " bonds), far field " << outside << " (" << far_n << ")\n";
   EXPECT_GT(below, 2.0 * outside);
+}
+
+TEST(CentrifugeFoundation, TheParticlesForcesBalanceWithinOnePercentWithoutTheDamping) {
+  // The check: foundation force + particle weight = the reactions of
+  // the boundary walls and the FDM + the rate of change of the particles'
+  // momentum, within 1 % averaged over the loading (h > 0.5 mm, after the
+  // ramp). What no boundary carries is the local damping force; the loading
+  // runs at 0.0625 m/s with alpha 0.2 (pile.local_damping) to keep it small.
+  // Measured on this variant: 0.63 % to 6 mm (1.1 % to 4 mm: the collapse
+  // below the tip, where the damping works hardest, weighs more in a short
+  // push; docs/centrifuge_foundation.md, Force balance); at 0.25 m/s with
+  // alpha 0.7 it was 11 %, so the check can fail.
+  const auto results = results_of("g100_p1");
+  const auto time = series(results, "time_s");
+  const auto moved = series(results, "dem_pile_displacement_m");
+  const auto pile = series(results, "dem_wall_pile_force_n");    // [n, 3], force of the particles on the wall
+  const auto floor = series(results, "dem_wall_floor_force_n");  // [n, 3]
+  const auto coupling = series(results, "dem_interface_force_reaction");  // [n, 3], on the particles
+  const auto weight = series(results, "dem_total_weight_n");
+  const auto momentum = series(results, "dem_particle_momentum_n_s");  // [n, 3]
+  const auto damping = series(results, "dem_damping_force_n");         // [n, 3]
+  double residual = 0.0, closure = 0.0, scale = 0.0;
+  int n = 0;
+  for (std::size_t k = 1; k < time.size(); ++k) {
+    if (moved[k] <= 0.5e-3) continue;
+    // Averages of record k are over (t_{k-1}, t_k]: the momentum change over the same interval.
+    const double rate = (momentum[3 * k + 2] - momentum[3 * (k - 1) + 2]) / (time[k] - time[k - 1]);
+    const double boundaries = -pile[3 * k + 2] - floor[3 * k + 2] + coupling[3 * k + 2] - weight[k];
+    residual += rate - boundaries;
+    closure += rate - boundaries - damping[3 * k + 2];
+    scale += std::abs(pile[3 * k + 2]) + weight[k];
+    ++n;
+  }
+  ASSERT_GT(n, 100);
+  std::cout << "momentum balance over " << n << " records: residual without damping " << residual / scale << ", with it " << closure / scale
+            << " of the foundation force plus the weight\n";
+  EXPECT_LT(std::abs(residual) / scale, 0.01);
+  EXPECT_LT(std::abs(closure) / scale, 1e-6);  // with the damping term it closes (MomentumBalance.*): the bookkeeping is right
 }
 
 TEST(CentrifugeFoundation, ARunRepeatsBitForBit) {
