@@ -345,6 +345,41 @@ def stress_grid(run, nr=6, nz=8, r_edges=None, z_edges=None, group_name="foundat
     return np.array(out_rr), np.array(out_zz)
 
 
+def force_balance(run):
+    """Vertical forces on the particles averaged over the loading (h_1 > 0.5 mm): pile, floor,
+    coupling wall (the FDM), weight and the local damping force (which no boundary carries);
+    their sum is the rate of change of the particles' momentum (SPEC.md §6.3). A core standing
+    on the FDM's base (no DEM floor wall) has a floor force of zero: the coupling wall carries it.
+
+    balance_without_damping is the issue's check: the mean over the loading of
+    dP/dt - (boundaries + weight), the damping term left out, over the mean pile force plus
+    the weight (the test CentrifugeFoundation.TheParticlesForcesBalance... computes the same);
+    momentum_balance_residual_over_pile_plus_weight is the largest residual with the damping
+    term (round-off when the bookkeeping is right)."""
+    s = run.series
+    pile = -s["dem_wall_pile_force_n"][:, 2]
+    floor = -s["dem_wall_floor_force_n"][:, 2] if "dem_wall_floor_force_n" in s else np.zeros_like(pile)
+    interface = s["dem_interface_force_reaction"][:, 2]
+    weight = -s["dem_total_weight_n"]
+    damping = s["dem_damping_force_n"][:, 2] if "dem_damping_force_n" in s else np.zeros_like(pile)
+    loading = run.h > 0.5e-3
+    boundaries = pile + floor + interface + weight
+    scale = np.mean(np.abs(pile[loading]) - weight[loading])
+    out = {"pile_n": float(np.mean(pile[loading])), "floor_n": float(np.mean(floor[loading])),
+           "coupling_wall_n": float(np.mean(interface[loading])), "weight_n": float(np.mean(weight[loading])),
+           "damping_n": float(np.mean(damping[loading])),
+           "boundaries_residual_n": float(np.mean(boundaries[loading])),
+           "damping_over_pile": float(np.mean(damping[loading]) / np.mean(np.abs(pile[loading])))}
+    if "dem_particle_momentum_n_s" in s:
+        t = s["time_s"]
+        rate = np.diff(s["dem_particle_momentum_n_s"][:, 2]) / np.diff(t)  # over (t_{k-1}, t_k], as the averages of record k
+        during = loading[1:]
+        closure = rate - (boundaries[1:] + damping[1:])
+        out["momentum_balance_residual_over_pile_plus_weight"] = float(np.max(np.abs(closure[during])) / scale)
+        out["balance_without_damping"] = float(np.mean((rate - boundaries[1:])[during]) / np.mean((np.abs(pile[1:]) - weight[1:])[during]))
+    return out
+
+
 def spread(values):
     values = [v for v in values if np.isfinite(v)]
     if not values:
@@ -387,6 +422,7 @@ def main(argv=None):
             "broken_fraction_at_collapse": broken_fractions(run.path, run.diameter, run.surface_z, collapse_snapshot(run)),
             "broken_fraction_at_end": broken_fractions(run.path, run.diameter, run.surface_z, snapshots_of(run.path)[-1][0]),
             "bonds_final": {k: run.series["dem_bonds_" + k][-1] for k in ("intact", "damaged", "broken_tension", "broken_shear")},
+            "force_balance": force_balance(run),
         }
     for g, members in groups.items():
         summary["g_levels"][f"{g:g}"] = {
@@ -400,6 +436,8 @@ def main(argv=None):
             "broken_fraction_at_collapse_far_field": spread([summary["runs"][r.label]["broken_fraction_at_collapse"]["far_field"] for r in members]),
             "broken_fraction_at_end_whole_body": spread([summary["runs"][r.label]["broken_fraction_at_end"]["whole_body"] for r in members]),
             "wall_time_s": spread([r.summary.get("wall_time_s", float("nan")) for r in members]),
+            "damping_over_pile": spread([summary["runs"][r.label]["force_balance"]["damping_over_pile"] for r in members]),
+            "balance_without_damping": spread([summary["runs"][r.label]["force_balance"].get("balance_without_damping", float("nan")) for r in members]),
         }
     rate = [r for r in runs if r.velocity != base_velocity]
     for slow in rate:
@@ -409,7 +447,10 @@ def main(argv=None):
             summary.setdefault("rate_check", []).append({
                 "label": slow.label, "velocity_m_s": slow.velocity, "base_velocity_m_s": base_velocity,
                 "force_n_at_h_0.5D": slow.force_at(0.5), "base_force_n_at_h_0.5D": fast.force_at(0.5),
-                "relative_change": slow.force_at(0.5) / fast.force_at(0.5) - 1.0})
+                "relative_change": slow.force_at(0.5) / fast.force_at(0.5) - 1.0,
+                "peak_force_n": float(np.max(slow.force)), "base_peak_force_n": float(np.max(fast.force)),
+                "mean_force_n_0.25_to_1D": slow.mean_force(0.25, 1.0), "base_mean_force_n_0.25_to_1D": fast.mean_force(0.25, 1.0),
+                "force_n_at_h_1D": slow.force_at(1.0), "base_force_n_at_h_1D": fast.force_at(1.0)})
     with open(os.path.join(out, "summary.json"), "w", encoding="utf-8") as handle:
         json.dump(summary, handle, indent=1, default=float)
     def text(entry):
@@ -417,7 +458,9 @@ def main(argv=None):
 
     for g, entry in summary["g_levels"].items():
         print(f"{g:>5} g: peak {text(entry['peak_force_n'])}, mean over 0.25-1 D_f {text(entry['mean_force_n_0.25_to_1D'])}, "
-              f"F(h=0.5 D_f) {text(entry['force_n_at_h_0.5D'])}, F(h=1 D_f) {text(entry['force_n_at_h_1D'])}")
+              f"F(h=0.5 D_f) {text(entry['force_n_at_h_0.5D'])}, F(h=1 D_f) {text(entry['force_n_at_h_1D'])}, "
+              f"balance without damping {100 * entry['balance_without_damping']['mean']:.2f} % "
+              f"[{100 * entry['balance_without_damping'].get('min', float('nan')):.2f}, {100 * entry['balance_without_damping'].get('max', float('nan')):.2f}]")
     for check in summary.get("rate_check", []):
         print(f"rate check {check['label']}: F(h=0.5 D_f) {check['force_n_at_h_0.5D']:.1f} N at {check['velocity_m_s']} m/s vs "
               f"{check['base_force_n_at_h_0.5D']:.1f} N at {check['base_velocity_m_s']} m/s ({100 * check['relative_change']:+.1f} %)")

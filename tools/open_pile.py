@@ -43,7 +43,7 @@ import numpy as np  # noqa: E402
 warnings.filterwarnings("ignore", message="Mean of empty slice")  # band() past the end of a shorter run
 warnings.filterwarnings("ignore", message="All-NaN slice encountered")
 
-from centrifuge_foundation import Run, band, find_study_runs, h5py, open_results, spread, stress_grid, study_runs  # noqa: E402
+from centrifuge_foundation import Run, band, find_study_runs, force_balance, h5py, open_results, spread, stress_grid, study_runs  # noqa: E402
 
 DEPTHS_MM = (5.0, 10.0, 20.0)  # the forces the docs page reports (Ciantia et al. 2024 Fig. 2a runs to 20 mm)
 SMOOTHING = 0.5e-3  # m, the running mean of the force curves in Fig. 2a; the forces at 5, 10, 20 mm are means over the same width
@@ -242,33 +242,6 @@ def ring_mean(grid, r_edges, z_edges, r_range, z_range):
     zc = 0.5 * (z_edges[1:] + z_edges[:-1])
     pick = grid[np.ix_((zc >= z_range[0]) & (zc <= z_range[1]), (rc >= r_range[0]) & (rc <= r_range[1]))]
     return float(np.nanmean(pick)) if np.isfinite(pick).any() else float("nan")
-
-
-def force_balance(run):
-    """Vertical forces on the particles averaged over the loading (h > 0.5 mm): pile, floor,
-    coupling wall (the FDM), weight and the local damping force (which no boundary carries);
-    their sum is the rate of change of the particles' momentum (SPEC.md §6.3). A core standing
-    on the FDM's base (no DEM floor wall) has a floor force of zero: the coupling wall carries it."""
-    s = run.series
-    pile = -s["dem_wall_pile_force_n"][:, 2]
-    floor = -s["dem_wall_floor_force_n"][:, 2] if "dem_wall_floor_force_n" in s else np.zeros_like(pile)
-    interface = s["dem_interface_force_reaction"][:, 2]
-    weight = -s["dem_total_weight_n"]
-    damping = s["dem_damping_force_n"][:, 2] if "dem_damping_force_n" in s else np.zeros_like(pile)
-    loading = run.h > 0.5e-3
-    boundaries = pile + floor + interface + weight
-    out = {"pile_n": float(np.mean(pile[loading])), "floor_n": float(np.mean(floor[loading])),
-           "coupling_wall_n": float(np.mean(interface[loading])), "weight_n": float(np.mean(weight[loading])),
-           "damping_n": float(np.mean(damping[loading])),
-           "boundaries_residual_n": float(np.mean(boundaries[loading])),
-           "damping_over_pile": float(np.mean(damping[loading]) / np.mean(np.abs(pile[loading])))}
-    if "dem_particle_momentum_n_s" in s:
-        t = s["time_s"]
-        rate = np.diff(s["dem_particle_momentum_n_s"][:, 2]) / np.diff(t)
-        closure = rate - (boundaries[1:] + damping[1:])
-        out["momentum_balance_residual_over_pile_plus_weight"] = float(
-            np.max(np.abs(closure[loading[1:]])) / np.mean(np.abs(pile[loading]) - weight[loading]))
-    return out
 
 
 def analyse(run, out, figures):
