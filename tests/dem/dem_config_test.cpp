@@ -50,6 +50,20 @@ TEST(DemConfig, PileSidesAreBounded) {
   EXPECT_EQ(error_of(c).key_path(), "pile.sides");
 }
 
+// pile.local_damping: the loading stage's alpha, in [0, 1) like damping.local.
+TEST(DemConfig, PileLocalDampingOutsideZeroToOneNamesTheKey) {
+  nlohmann::json c = test::box_bed_config();
+  c["pile"] = {{"radius_m", 0.002}, {"tip_z_m", 0.05}, {"length_m", 0.02}};
+  for (const double alpha : {1.0, -0.1, 1.5}) {
+    c["pile"]["local_damping"] = alpha;
+    EXPECT_EQ(error_of(c).key_path(), "pile.local_damping") << alpha;
+  }
+  c["pile"]["local_damping"] = 0.2;
+  EXPECT_EQ(parse_dem_config(c).pile->local_damping, 0.2);
+  c["pile"].erase("local_damping");
+  EXPECT_FALSE(parse_dem_config(c).pile->local_damping.has_value());  // absent: damping.local throughout
+}
+
 TEST(DemConfig, UnknownContactLawNamesTheKeyAndListsTheRegistry) {
   nlohmann::json c = test::box_bed_config();
   c["contact"]["law"] = "hertz";
