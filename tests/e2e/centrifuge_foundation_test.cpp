@@ -191,7 +191,7 @@ TEST(CentrifugeFoundationSlow, ResistanceGrowsWithTheGLevelBeyondTheScatter) {
   // m/s with alpha 0.2 during the loading). The initial peak
   // does not separate: the packing decides it (docs/centrifuge_foundation.md §4).
   // Six runs of about 4.5 min each at one DEM thread.
-  const std::filesystem::path dir = run_scenario("centrifuge_pile_glevels", std::chrono::seconds(3300));
+  const std::filesystem::path dir = run_scenario("centrifuge_pile_glevels", std::chrono::seconds(6900));
   double lowest_100g = std::numeric_limits<double>::infinity(), highest_1g = 0.0;
   for (const char* packing : {"p1", "p2", "p3"}) {
     const double at_1g = mean_resistance(dir / (std::string("g1_") + packing) / "results.h5");
