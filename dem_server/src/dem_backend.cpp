@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/dem/damage_bond_law.hpp"
 #include "dfc/dem/measurements.hpp"
@@ -226,7 +227,15 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   using protocol::ProtocolError;
   Simulation& s = sim();
 
-  // 1. Interface velocities (required exactly when an interface exists); nothing else (SPEC.md §6.1).
+  // 1. Refuse an unstable step before anything changes (SPEC.md §5.2: the reply carries the largest stable one).
+  const double limit = s.critical_timestep();
+  if (request.dt > limit) {
+    std::ostringstream msg;
+    msg << "dt = " << request.dt << " s exceeds the critical time step of the DEM; the largest stable step is " << limit << " s";
+    throw UnstableStepError(msg.str(), limit);
+  }
+
+  // 2. Interface velocities (required exactly when an interface exists); nothing else (SPEC.md §6.1).
   protocol::require_only(request.inputs, {protocol::field::velocity}, "dem_server");
   std::vector<Vec3> node_velocity;
   if (interface_wall_) {
@@ -241,13 +250,6 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     throw ProtocolError(ErrorCode::bad_array, "advance carries 'velocity' but no interface was set; send set_interface first or omit the array");
   }
 
-  // 2. Refuse an unstable step (SPEC §5.2: say the largest stable one).
-  const double limit = s.critical_timestep();
-  if (request.dt > limit) {
-    std::ostringstream msg;
-    msg << "dt = " << request.dt << " s exceeds the critical time step of the DEM; the largest stable step is " << limit << " s";
-    throw SolverError(msg.str());
-  }
 
   // 3. Run, accumulating impulses of the interface, the pile and every wall.
   const auto& walls = s.walls();

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/fdm/grid_snapshot.hpp"
 #include "dfc/fdm/interface_matching.hpp"
@@ -123,6 +124,8 @@ void FdmBackend::run_steps(const protocol::AdvanceRequest& request, const std::f
 
 protocol::AdvanceResult FdmBackend::advance(const protocol::AdvanceRequest& request) {
   if (!model_) throw ProtocolError(ErrorCode::out_of_order, "fdm_server is not configured yet; send configure first");
+  // Refused before any input is applied (SPEC.md §5.2): the reply carries the largest stable step, and nothing changes.
+  if (const auto reason = solver().unstable_step_reason(request.dt)) throw UnstableStepError(*reason, solver().critical_timestep());
   switch (model_->coupling.role) {
     case CouplingRole::provider: return advance_provider(request);
     case CouplingRole::driven: return advance_driven(request);

@@ -210,13 +210,17 @@ int Solver::thread_count() const {
 #endif
 }
 
+std::optional<std::string> Solver::unstable_step_reason(double dt) const {
+  // The reply to configure announces critical_timestep() as dt_max; allow for its round trip through JSON.
+  if (settings_.mass_scaling || dt <= critical_timestep_ * (1.0 + 1e-12)) return std::nullopt;
+  return "time step dt = " + format_seconds(dt) + " exceeds the critical step " + format_seconds(critical_timestep_) +
+         " of the FDM grid (docs/theory/fdm.md §1.10: min V/(Cp A_max)/2) and mass scaling is off; use dt <= " +
+         format_seconds(critical_timestep_) + " or set \"mass_scaling\": true";
+}
+
 void Solver::step(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw SolverError("the FDM time step must be a positive finite number of seconds");
-  // The reply to configure announces critical_timestep() as dt_max; allow for its round trip through JSON.
-  if (!settings_.mass_scaling && dt > critical_timestep_ * (1.0 + 1e-12))
-    throw SolverError("time step dt = " + format_seconds(dt) + " exceeds the critical step " + format_seconds(critical_timestep_) +
-                      " of the FDM grid (docs/theory/fdm.md §1.10: min V/(Cp A_max)/2) and mass scaling is off; use dt <= " +
-                      format_seconds(critical_timestep_) + " or set \"mass_scaling\": true");
+  if (const auto reason = unstable_step_reason(dt)) throw SolverError(*reason);
   update_inertial_masses(dt);
   gridpoint_pass(dt);
   zone_pass(dt);

@@ -2,6 +2,8 @@
 // unchanged, interface outputs, then query, snapshot and the ordering rules
 // of the running state.
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -75,6 +77,70 @@ void unexpected_input_is_bad_array(Context& context) {
   const std::string message = reply.body["message"].get<std::string>();
   expect(message.find(surplus) != std::string::npos, "the BAD_ARRAY message does not name the array '" + surplus + "': \"" + message + "\"");
   expect_step_unchanged(context);
+}
+
+// SPEC.md §5.2 (1.4): a dt above the announced dt_max is refused before
+// anything runs, with the largest stable step as a number, and the server
+// stays usable: a wrong-step advance then gets STEP_MISMATCH, not the
+// OUT_OF_ORDER of a failed server.
+void unstable_dt_is_refused_with_dt_max(Context& context) {
+  if (!context.dt_max) throw NotApplicable("configured.info.dt_max is null: every step is stable");
+  const protocol::Message reply = advance_with_inputs(context, context.step, 1, 10.0 * *context.dt_max);
+  expect_error(reply, {"SOLVER_FAILURE"});
+  expect(reply.body.contains("dt_max") && reply.body["dt_max"].is_number() && reply.body["dt_max"].get<double>() > 0.0,
+         "the SOLVER_FAILURE for dt = 10 dt_max lacks a positive number body.dt_max: " + reply.body.dump());
+  expect(reply.body["dt_max"].get<double>() < 10.0 * *context.dt_max, "body.dt_max " + reply.body["dt_max"].dump() +
+                                                                          " s is not below the refused dt");
+  expect_step_unchanged(context);
+  const protocol::Message probe = advance_with_inputs(context, context.step + 7, 1, context.dt);
+  expect(probe.type == protocol::type::error && probe.body.value("code", "") == "STEP_MISMATCH",
+         "after refusing the unstable dt the server answers a wrong-step advance with " + probe.body.value("code", probe.type) +
+             ", not STEP_MISMATCH: it must keep its state (SPEC.md §5.2)");
+}
+
+// SPEC.md §6.1, §6.3: with NON-ZERO interface forces a provider reports their
+// sum as interface_force_received, and interface_power_w as Σ f·v with the
+// velocity averaged over the advance, which for one step is the velocity it
+// returns. Both are sums of the same terms in some order: a relative
+// tolerance of 1e-9 leaves room for the order, not for a wrong term.
+void provider_reports_the_forces_it_received(Context& context) {
+  if (!context.provides_interface) throw NotApplicable("the server provides no interface");
+  if (!context.provided_nodes) throw CheckFailure("not run: get_interface failed above");
+  const std::int64_t n = *context.provided_nodes;
+  std::vector<double> force(static_cast<std::size_t>(3 * n));
+  std::array<double, 3> sum{0, 0, 0};
+  for (std::size_t k = 0; k < force.size(); ++k) {
+    force[k] = 1e-3 * (double(k % 7) - 3.0) + 2e-4;  // small, mixed signs, no two rows alike in sum
+    sum[k % 3] += force[k];
+  }
+  protocol::Message request = advance_request(context.step, 1, context.dt);
+  request.arrays = zero_inputs(context);
+  for (auto& array : request.arrays)
+    if (array.name == protocol::field::force) array = protocol::Array::from_f64(protocol::field::force, {n, 3}, force);
+  const protocol::Message reply = context.request(std::move(request));
+  expect_type(reply, protocol::type::advanced);
+  context.step += 1;
+  const nlohmann::json& monitors = reply.body.value("monitors", nlohmann::json::object());
+  const nlohmann::json received = monitors.value("interface_force_received", nlohmann::json());
+  expect(received.is_array() && received.size() == 3, "monitor interface_force_received is not an [x, y, z] array: " + received.dump());
+  double scale = 0.0;
+  for (const double f : force) scale += std::abs(f);
+  for (std::size_t i = 0; i < 3; ++i)
+    expect(received[i].is_number() && std::abs(received[i].get<double>() - sum[i]) <= 1e-9 * scale,
+           "interface_force_received " + received.dump() + " is not the sum of the forces sent [" + std::to_string(sum[0]) + ", " +
+               std::to_string(sum[1]) + ", " + std::to_string(sum[2]) + "]");
+  const auto velocity = expect_array(reply, protocol::field::velocity, protocol::DType::f64, {n, 3}).to_f64();
+  double power = 0.0, power_scale = 0.0;
+  for (std::size_t k = 0; k < force.size(); ++k) {
+    power += force[k] * velocity[k];
+    power_scale += std::abs(force[k] * velocity[k]);
+  }
+  if (!monitors.contains("interface_power_w")) return;  // optional (SPEC.md §6.3); when sent, it must be right
+  const nlohmann::json& reported = monitors["interface_power_w"];
+  expect(reported.is_number(), "monitor interface_power_w is not a number: " + reported.dump());
+  expect(std::abs(reported.get<double>() - power) <= 1e-9 * power_scale + 1e-300,
+         "interface_power_w " + reported.dump() + " W is not Σ force · velocity = " + std::to_string(power) +
+             " W over the forces sent and the velocities returned (one step: the velocity averaged over the advance)");
 }
 
 /// The advanced reply's outputs per SPEC.md §6.1 and its monitors.
@@ -152,9 +218,12 @@ void snapshot_matches_capability(Context& context) {
     const std::int64_t n = expect_array(reply, "node_position", DType::f64, {-1, 3}).shape[0];
     expect_array(reply, "node_displacement", DType::f64, {n, 3});
     expect_array(reply, "node_velocity", DType::f64, {n, 3});
-    const std::int64_t m = expect_array(reply, "zone_nodes", DType::i64, {-1, 8}).shape[0];
-    expect_index_rows(*protocol::find_array(reply.arrays, "zone_nodes"), n);
-    expect_array(reply, "zone_stress", DType::f64, {m, 6});
+    // A grid without zones may omit both zone arrays (SPEC.md §6.4).
+    if (protocol::find_array(reply.arrays, "zone_nodes") != nullptr || protocol::find_array(reply.arrays, "zone_stress") != nullptr) {
+      const std::int64_t m = expect_array(reply, "zone_nodes", DType::i64, {-1, 8}).shape[0];
+      expect_index_rows(*protocol::find_array(reply.arrays, "zone_nodes"), n);
+      expect_array(reply, "zone_stress", DType::f64, {m, 6});
+    }
   } else {
     throw CheckFailure("snapshot_data.kind is '" + kind + "', expected 'particles' or 'grid'");
   }
@@ -187,9 +256,13 @@ std::vector<Check> advance_checks() {
        unexpected_input_is_bad_array},
       {"advance.wrong_input_shape", "an input with n+1 rows gets BAD_ARRAY naming the array", M::configured, M::none, true,
        misshapen_input_is_bad_array},
+      {"advance.unstable_dt", "advance with dt = 10 dt_max gets SOLVER_FAILURE with body.dt_max and changes nothing (1.4)", M::configured,
+       M::none, true, unstable_dt_is_refused_with_dt_max},
       {"advance.one_step", "advance 1 step from 0 gets advanced at step 1 with outputs of SPEC §6.1", M::configured, M::stepped, true,
        one_step},
       {"advance.two_steps", "advance 2 steps from 1 gets advanced at step 3", M::stepped, M::none, true, two_steps},
+      {"advance.forces_received", "a provider's interface_force_received and interface_power_w match non-zero forces sent", M::stepped,
+       M::none, true, provider_reports_the_forces_it_received},
       {"running.query", "query gets monitors at the current step", M::configured, M::none, true, query_reports_step_and_monitors},
       {"running.monitor_units", "configure's info.monitor_units gives the unit of every monitor sent after a step", M::stepped, M::none,
        true, declared_units_cover_monitors},

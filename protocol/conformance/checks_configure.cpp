@@ -76,7 +76,10 @@ void configure_is_accepted_with_hash(Context& context) {
   expect(context.monitor_units.is_null() || context.monitor_units.is_object(),
          "configured.info.monitor_units must be an object {monitor: unit}, got " + context.monitor_units.dump().substr(0, 200));
   context.dt = info["dt_suggested"].get<double>();
-  if (info["dt_max"].is_number()) context.dt = std::min(context.dt, info["dt_max"].get<double>());
+  if (info["dt_max"].is_number()) {
+    context.dt_max = info["dt_max"].get<double>();
+    context.dt = std::min(context.dt, *context.dt_max);
+  }
   context.step = 0;
 }
 

@@ -142,6 +142,21 @@ void overflowing_shape(Context& context) {
   expect_refused(context, header, {std::string(8, '\0')}, {"TOO_LARGE", "BAD_ARRAY"});
 }
 
+// SPEC.md §3.1 (1.4): a server numbers every reply it sends, one counter for
+// all of them, so the reply to a message it could not decode takes the next
+// number too; that reply has no reply_to, since no seq could be read.
+void replies_are_numbered_in_sending_order(Context& context) {
+  const protocol::Message before = context.request(protocol::type::ping);
+  const protocol::Message refused = context.send_frames({"this is {not JSON"});
+  const protocol::Message after = context.request(protocol::type::ping);
+  expect_error(refused, {"BAD_MESSAGE"});
+  expect(!refused.reply_to.has_value(), "the error to an undecodable message has reply_to " +
+                                            (refused.reply_to ? std::to_string(*refused.reply_to) : std::string()) + ", but it answers no seq");
+  expect(refused.seq == before.seq + 1 && after.seq == refused.seq + 1,
+         "three replies in a row carry seq " + std::to_string(before.seq) + ", " + std::to_string(refused.seq) + ", " +
+             std::to_string(after.seq) + "; a server numbers its replies 0, 1, 2, ... in sending order, errors to undecodable messages included");
+}
+
 }  // namespace
 
 std::vector<Check> malformed_message_checks() {
@@ -166,6 +181,8 @@ std::vector<Check> malformed_message_checks() {
        true, huge_declared_shape},
       {"arrays.overflowing_shape", "a shape whose byte size overflows 64 bits gets TOO_LARGE or BAD_ARRAY", M::greeted, M::none, true,
        overflowing_shape},
+      {"malformed.reply_seq_order", "reply seqs go up by one across replies, an undecodable message's error included (1.4)", M::greeted,
+       M::none, true, replies_are_numbered_in_sending_order},
   };
 }
 

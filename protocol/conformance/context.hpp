@@ -61,11 +61,14 @@ class Context {
   bool snapshot = false;
   bool checkpoint = false;               ///< 1.3 (SPEC.md §4.7)
   double dt = 1e-6;                      ///< s; dt_suggested from configured
+  std::optional<double> dt_max;          ///< s; configured.info.dt_max when a number
   std::int64_t step = 0;                 ///< the server's step as the checks know it
   nlohmann::json monitor_units;          ///< configured.info.monitor_units; null when the server declared none
   /// Rows of the interface arrays, once known: the mesh the server provided
   /// (get_interface) and the test mesh it accepted (set_interface).
   std::optional<std::int64_t> provided_nodes;
+  std::vector<double> provided_coordinates;   ///< [n, 3] of get_interface
+  std::vector<std::int64_t> provided_facets;  ///< [m, 3] of get_interface
   std::optional<std::int64_t> accepted_nodes;
   std::optional<protocol::Message> hello_reply;
 

@@ -27,6 +27,7 @@ Connection::Connection(zmq::context_t& context, const std::string& endpoint, std
 
 std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline) {
   const auto until = std::chrono::steady_clock::now() + deadline;
+  skipped_reply_to_.clear();
   while (true) {
     if (wait_hook_) wait_hook_();
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
@@ -36,7 +37,8 @@ std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, 
     const auto views = frame_views(*frames, 0);
     Message reply = decode(views, limits_);
     if (!seq || !reply.reply_to || *reply.reply_to == *seq) return reply;
-    // A late reply to a request we gave up on: skip it.
+    // A late reply to a request we gave up on: skip it (and remember it, in case nothing else comes).
+    skipped_reply_to_.push_back(*reply.reply_to);
   }
 }
 
@@ -44,8 +46,15 @@ Message Connection::request_raw(Message request, std::chrono::milliseconds deadl
   request.seq = next_seq_++;
   send_message(socket_, request);
   auto reply = await_reply(request.seq, deadline);
-  if (!reply)
-    throw TimeoutError(label_ + " did not answer '" + request.type + "' within " + format_seconds(deadline));
+  if (!reply) {
+    std::string why = label_ + " did not answer '" + request.type + "' (seq " + std::to_string(request.seq) + ") within " + format_seconds(deadline);
+    if (!skipped_reply_to_.empty()) {
+      why += "; it did send " + std::to_string(skipped_reply_to_.size()) + " repl" + (skipped_reply_to_.size() == 1 ? "y" : "ies") +
+             " with reply_to " + std::to_string(skipped_reply_to_.back()) +
+             ", which answer no request awaited now: a reply must carry its request's seq as reply_to (SPEC.md §3.1)";
+    }
+    throw TimeoutError(why);
+  }
   return *reply;
 }
 

@@ -95,10 +95,13 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
     try {
       reply = session.handle(decode(views, options.limits));
     } catch (const DecodeError& e) {
-      reply = make_error(e.seq(), e.code(), e.what());
+      reply = session.refuse_undecodable(e);
     }
     send_message(socket, reply, &routing_id);
   }
+  // The sockets drop unsent messages on close (ZMQ_LINGER 0, so that no abort
+  // path blocks); after `shutdown` give `bye` up to a second to leave (SPEC.md §2).
+  socket.set(zmq::sockopt::linger, 1000);
   return 0;
 }
 

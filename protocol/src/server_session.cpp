@@ -6,6 +6,7 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
 #include "dfc/common/state_archive.hpp"
+#include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/checkpoint_file.hpp"
 
@@ -28,6 +29,11 @@ InterfaceMesh interface_from_arrays(const std::vector<Array>& arrays) {
     throw ProtocolError(ErrorCode::bad_array, "set_interface needs array 'facets' (i64 [m,3])");
   InterfaceMesh mesh;
   mesh.node_ids = ids->to_i64();
+  // SPEC.md §4.3: rows are addressed by their ids, so two rows with one id would make the mesh ambiguous.
+  std::vector<std::int64_t> sorted = mesh.node_ids;
+  std::sort(sorted.begin(), sorted.end());
+  if (const auto twin = std::adjacent_find(sorted.begin(), sorted.end()); twin != sorted.end())
+    throw ProtocolError(ErrorCode::bad_array, "'node_ids' holds id " + std::to_string(*twin) + " more than once; node ids must be unique");
   mesh.coordinates = require_f64(arrays, field::coordinates, ids->shape[0], 3);
   mesh.facets = facets->to_i64();
   for (const auto index : mesh.facets)
@@ -83,6 +89,10 @@ Message ServerSession::handle(const Message& request) {
     reply = make_error(request.seq, e.code(), e.what(), e.key());
   } catch (const ConfigError& e) {
     reply = make_error(request.seq, ErrorCode::bad_config, e.what(), e.key_path());
+  } catch (const UnstableStepError& e) {
+    // Refused before anything ran: state and step stay, and the client learns the step it may retry with.
+    reply = make_error(request.seq, ErrorCode::solver_failure, e.what());
+    reply.body["dt_max"] = e.dt_max();
   } catch (const SolverError& e) {
     if (state_ == SessionState::running || state_ == SessionState::configured) state_ = SessionState::failed;
     reply = make_error(request.seq, ErrorCode::solver_failure, e.what());
@@ -92,6 +102,12 @@ Message ServerSession::handle(const Message& request) {
     reply = make_error(request.seq, ErrorCode::internal, std::string("internal error: ") + e.what());
   }
   if (reply.type == type::error) reply.seq = next_seq_++;
+  return reply;
+}
+
+Message ServerSession::refuse_undecodable(const DecodeError& error) {
+  Message reply = make_error(error.seq(), error.code(), error.what());
+  reply.seq = next_seq_++;
   return reply;
 }
 

@@ -83,6 +83,26 @@ TEST_F(ClientLoopbackTest, LateReplyToAnAbandonedRequestIsSkipped) {
   EXPECT_EQ(reply.body.value("which", ""), "fresh");
 }
 
+TEST_F(ClientLoopbackTest, AReplyWithAWrongReplyToIsNamedInTheTimeout) {
+  // A server that answers with the wrong reply_to looks like one that never
+  // answers; the timeout says what did arrive (SPEC.md §3.1).
+  std::jthread server([&] {
+    const auto request = router.receive();
+    if (!request) return;
+    Message wrong = LoopbackRouter::answer(request->decoded(), "pong");
+    wrong.reply_to = *wrong.reply_to + 40;
+    router.reply(*request, wrong);
+  });
+  try {
+    (void)connection.request(request_of("ping"), 300ms);
+    FAIL() << "no TimeoutError";
+  } catch (const TimeoutError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("reply_to 41"), std::string::npos) << what;
+    EXPECT_NE(what.find("seq 1"), std::string::npos) << what;
+  }
+}
+
 TEST_F(ClientLoopbackTest, ErrorReplyIsARemoteErrorWithCodeAndKeyOrReturnedRaw) {
   std::jthread server([&] {
     for (int i = 0; i < 2; ++i) {

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "dfc/common/config_reader.hpp"
+#include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 
@@ -15,6 +16,7 @@ namespace dfc::protocol::testing {
 
 namespace {
 constexpr double kNodeMass = 1.0;  // kg, before any lumped mass from the other side
+constexpr double kDtMax = 1e-2;    // s, the stability limit the fixture announces and enforces (SPEC.md §5.2)
 }
 
 std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
@@ -54,7 +56,7 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
   if (breakage_ == Breakage::huge_particle_count) monitors_ = {{"particle_count", 2e10}};
   nlohmann::json units = shared_monitor_units();
   units["particle_count"] = unit::dimensionless;  // sent by the huge_particle_count breakage only
-  return {{"dt_suggested", 1e-3}, {"dt_max", 1e-2}, {monitor_units_key, units}};
+  return {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}};
 }
 
 AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
@@ -68,6 +70,7 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::nan_velocity:
     case Breakage::huge_particle_count: break;
   }
+  if (request.dt > kDtMax) throw UnstableStepError("dt exceeds the fixture's stability limit", kDtMax);  // before anything changes
   const std::int64_t n = mesh_.node_count();
   require_only(request.inputs, {field::force, field::mass}, "conformance_fixture_server");
   const std::vector<double> force = require_f64(request.inputs, field::force, n, 3);
@@ -77,14 +80,16 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
   const double duration = request.dt * double(request.n_steps);
   std::array<double, 3> received{0.0, 0.0, 0.0};
   double kinetic = 0.0;
+  double power = 0.0;  // with the one velocity Euler holds over the advance (SPEC.md §6.3)
   for (std::size_t k = 0; k < force.size(); ++k) {
     const double mass = kNodeMass + lumped[k / 3];
     velocity_[k] += force[k] / mass * duration;
     displacement_[k] += velocity_[k] * duration;
     received[k % 3] += force[k];
+    power += force[k] * velocity_[k];
     kinetic += 0.5 * mass * velocity_[k] * velocity_[k];
   }
-  monitors_ = {{"unbalanced_force_ratio", 0.0}, {"kinetic_energy_j", kinetic}, {"interface_force_received", received}};
+  monitors_ = {{"unbalanced_force_ratio", 0.0}, {"kinetic_energy_j", kinetic}, {"interface_force_received", received}, {"interface_power_w", power}};
   if (breakage_ == Breakage::no_force_monitor) monitors_.erase("interface_force_received");
   if (breakage_ == Breakage::nan_velocity) velocity_.back() = std::numeric_limits<double>::quiet_NaN();
   AdvanceResult result;

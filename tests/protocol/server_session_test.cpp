@@ -2,6 +2,7 @@
 // §5.1, step semantics (§5.2), and how backend failures become error replies.
 #include <gtest/gtest.h>
 
+#include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/server_session.hpp"
 #include "scripted_backend.hpp"
@@ -202,6 +203,17 @@ TEST_F(ServerSessionTest, SetInterfaceWithAFacetOutOfRangeIsBadArray) {
   EXPECT_FALSE(backend.received_mesh.has_value());
 }
 
+TEST_F(ServerSessionTest, SetInterfaceWithADuplicateNodeIdIsBadArrayNamingIt) {
+  reach_configured();
+  std::vector<Array> arrays = mesh_arrays({0, 1, 2});
+  arrays[0] = Array::from_i64(field::node_ids, {3}, std::vector<std::int64_t>{7, 8, 7});
+  const Message reply = send(type::set_interface, nlohmann::json::object(), std::nullopt, arrays);
+  EXPECT_EQ(error_code(reply), "BAD_ARRAY");
+  EXPECT_NE(reply.body["message"].get<std::string>().find("id 7"), std::string::npos) << reply.body.dump();
+  EXPECT_FALSE(backend.received_mesh.has_value());
+  EXPECT_EQ(session.state(), SessionState::configured);
+}
+
 TEST_F(ServerSessionTest, AdvanceCountsStepsAndPassesTheRequest) {
   reach_configured();
   const std::vector<Array> inputs{Array::from_f64(field::force, {1, 3}, std::vector<double>{4, 5, 6})};
@@ -278,6 +290,34 @@ TEST_F(ServerSessionTest, SolverErrorFailsTheSessionAndRefusesFurtherAdvances) {
   EXPECT_EQ(session.state(), SessionState::failed);
 }
 
+TEST_F(ServerSessionTest, AnUnstableStepIsRefusedWithDtMaxAndChangesNothing) {
+  // SPEC.md §5.2: a step above the stability limit is refused before anything
+  // runs; the reply says the largest stable step as a number, and the client
+  // may go on with it (unlike every other SOLVER_FAILURE, which is fatal).
+  reach_running();
+  backend.on_advance = [](const AdvanceRequest& request) {
+    if (request.dt > 0.3) throw UnstableStepError("dt exceeds the critical step 0.3 s", 0.3);
+  };
+  const Message refused = advance(1, 1, 0.5);
+  EXPECT_EQ(error_code(refused), "SOLVER_FAILURE");
+  ASSERT_TRUE(refused.body.contains("dt_max")) << refused.body.dump();
+  EXPECT_EQ(refused.body["dt_max"], 0.3);
+  EXPECT_EQ(session.state(), SessionState::running);
+  EXPECT_EQ(session.step(), 1);
+  const Message retried = advance(1, 1, 0.3);
+  EXPECT_EQ(retried.type, type::advanced);
+  EXPECT_EQ(retried.step, 2);
+}
+
+TEST_F(ServerSessionTest, OtherSolverFailuresCarryNoDtMaxAndAreFatal) {
+  reach_running();
+  backend.on_advance = [](const AdvanceRequest&) { throw SolverError("a particle position became non-finite"); };
+  const Message reply = advance(1);
+  EXPECT_EQ(error_code(reply), "SOLVER_FAILURE");
+  EXPECT_FALSE(reply.body.contains("dt_max"));
+  EXPECT_EQ(session.state(), SessionState::failed);
+}
+
 TEST_F(ServerSessionTest, RunningRefusesInterfaceExchangeAndConfigure) {
   reach_running();
   EXPECT_EQ(error_code(send(type::get_interface)), "OUT_OF_ORDER");
@@ -331,12 +371,22 @@ TEST(ServerSessionShutdown, ClosesFromEveryState) {
   }
 }
 
-TEST_F(ServerSessionTest, ReplySeqsIncreaseAcrossRepliesAndErrors) {
+TEST_F(ServerSessionTest, ReplySeqsIncreaseByOneAcrossRepliesAndErrors) {
+  // SPEC.md §3.1: a server numbers its replies 0, 1, 2, ... in the order it
+  // sends them, whatever they answer, including messages it could not decode.
   const Message a = send(type::ping);
   const Message b = send("teleport");
-  const Message c = send(type::ping);
-  EXPECT_LT(a.seq, b.seq);
-  EXPECT_LT(b.seq, c.seq);
+  const Message c = session.refuse_undecodable(DecodeError(ErrorCode::bad_message, "frame 0 is not a JSON object", std::nullopt));
+  const Message d = session.refuse_undecodable(DecodeError(ErrorCode::bad_message, "header field 'protocol' must be \"dfc\"", 41));
+  const Message e = send(type::ping);
+  EXPECT_EQ(a.seq, 0);
+  EXPECT_EQ(b.seq, 1);
+  EXPECT_EQ(c.seq, 2);
+  EXPECT_EQ(d.seq, 3);
+  EXPECT_EQ(e.seq, 4);
+  EXPECT_FALSE(c.reply_to.has_value()) << "no seq could be read, so there is nothing to answer";
+  EXPECT_EQ(d.reply_to, 41) << "the seq was read before the failure";
+  EXPECT_EQ(d.body["code"], "BAD_MESSAGE");
 }
 
 }  // namespace

@@ -23,7 +23,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "dfc/fdm/boundary_conditions.hpp"
@@ -85,6 +87,9 @@ class Solver {
   // Stepping ----------------------------------------------------------------
   /// Largest stable Δt with real masses, Δt_crit/2 of §1.10.
   [[nodiscard]] double critical_timestep() const { return critical_timestep_; }
+  /// Why Δt cannot be run stably (it exceeds critical_timestep() without mass
+  /// scaling), or nothing when it can.
+  [[nodiscard]] std::optional<std::string> unstable_step_reason(double dt) const;
   /// One cycle. Throws dfc::SolverError when Δt exceeds critical_timestep()
   /// without mass scaling, or when the state becomes non-finite.
   void step(double dt);

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <zmq.hpp>
 
@@ -65,6 +66,10 @@ class Connection {
   Limits limits_;
   std::int64_t next_seq_ = 1;
   WaitHook wait_hook_;
+  /// reply_to of the replies the last wait skipped (none of them answered its
+  /// request): a timeout names them, since a server that answers with a wrong
+  /// reply_to looks like one that never answers.
+  std::vector<std::int64_t> skipped_reply_to_;
 };
 
 /// Typed calls of the lifecycle (SPEC.md §4), on top of Connection.

@@ -3,7 +3,8 @@
 // independent of sockets so it can be unit-tested message by message.
 //
 //   fresh --hello--> greeted --configure--> configured --advance--> running
-//   any state --shutdown--> closed;   running --solver failure--> failed
+//   any state --shutdown--> closed;   configured | running --solver failure--> failed
+//   (an advance refused for an unstable dt, UnstableStepError, changes nothing)
 //   configured --restore--> running (1.3, capability checkpoint)
 #include <cstdint>
 #include <string>
@@ -24,6 +25,10 @@ class ServerSession {
 
   /// The reply to one decoded request. Never throws: every failure becomes an `error` reply.
   [[nodiscard]] Message handle(const Message& request);
+  /// The reply to a message that could not be decoded (SPEC.md §3.1): an
+  /// `error` with the session's next seq, like every other reply, and
+  /// `reply_to` only when the request's seq could be read.
+  [[nodiscard]] Message refuse_undecodable(const DecodeError& error);
 
   [[nodiscard]] SessionState state() const noexcept { return state_; }
   [[nodiscard]] std::int64_t step() const noexcept { return step_; }
