@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <fstream>
@@ -22,6 +23,7 @@
 #include "dfc/coupler/progress_line.hpp"
 #include "dfc/coupler/results_writer.hpp"
 #include "dfc/coupler/run_checkpoint.hpp"
+#include "dfc/coupler/serial_coupling_scheme.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 
@@ -63,52 +65,14 @@ bool monitor_reached(const std::map<std::string, nlohmann::json>& monitors, cons
   return false;
 }
 
-/// The [x, y, z] monitor `name`, or nullopt when the server did not send it.
-/// Entries that are not numbers read as NaN, so the balance check catches them.
-std::optional<std::array<double, 3>> vector_monitor(const nlohmann::json& monitors, const char* name) {
-  const auto it = monitors.find(name);
-  if (it == monitors.end() || !it->is_array() || it->size() != 3) return std::nullopt;
-  const auto component = [&](std::size_t i) { return (*it)[i].is_number() ? (*it)[i].get<double>() : kNaN; };
-  return std::array<double, 3>{component(0), component(1), component(2)};
-}
-
-bool all_finite(const std::array<double, 3>& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
-
-/// Throws naming the first node row of interface array `name` that holds a NaN
-/// or an infinity; the caller blames the server that sent it.
-void require_finite_rows(const std::vector<double>& values, const char* name) {
-  for (std::size_t i = 0; i < values.size(); ++i)
-    if (!std::isfinite(values[i]))
-      throw SolverError("it sent a non-finite interface " + std::string(name) + " (" + std::to_string(values[i]) + " in node row " +
-                        std::to_string(i / 3) + ")");
-}
-
 std::optional<double> info_number(const nlohmann::json& info, const char* key) {
   const auto it = info.find(key);
   if (it == info.end() || !it->is_number()) return std::nullopt;
   return it->get<double>();
 }
 
-std::string format_vector(const std::array<double, 3>& v) {
-  std::ostringstream out;
-  out.precision(6);
-  out << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
-  return out.str();
-}
-
-/// Time steps of the run (SPEC.md §5.3): exchange duration T = k·dt_dem = m·dt_continuum.
-struct Timing {
-  std::int64_t dem_steps_per_exchange = 0;
-  std::int64_t continuum_steps_per_exchange = 0;
-  double dt_dem = 0.0;
-  double dt_continuum = 0.0;
-  [[nodiscard]] double exchange_duration() const {
-    return dem_steps_per_exchange > 0 ? double(dem_steps_per_exchange) * dt_dem : double(continuum_steps_per_exchange) * dt_continuum;
-  }
-};
-
-Timing choose_timing(const Scenario& scenario, Participant* dem, Participant* continuum) {
-  Timing timing;
+ExchangeTiming choose_timing(const Scenario& scenario, Participant* dem, Participant* continuum) {
+  ExchangeTiming timing;
   const auto& c = scenario.coupling;
   const auto check_stable = [](Participant& p, double dt, const std::string& key, const std::string& fix) {
     const auto dt_max = info_number(p.configured_info(), "dt_max");
@@ -199,6 +163,13 @@ void check_snapshot_memory(Participant& p, milliseconds deadline) {
     throw ConfigError(key, "the model has " + std::to_string(static_cast<long long>(particles)) + " particles; taking a snapshot of them needs about " +
                                gib(needed) + " in the coupler but this machine has " + gib(*available) +
                                " available: use fewer particles or larger ones, or a machine with more memory");
+}
+
+/// The participants of the dem and the continuum slot (null where the scenario has none).
+std::pair<Participant*, Participant*> by_slot(const std::vector<std::unique_ptr<Participant>>& participants) {
+  std::pair<Participant*, Participant*> slots{nullptr, nullptr};
+  for (const auto& p : participants) (p->spec().slot == "dem" ? slots.first : slots.second) = p.get();
+  return slots;
 }
 
 /// Starts and greets the participants; configures them; throws on the first problem.
@@ -349,6 +320,285 @@ void write_snapshots(ResultsWriter& writer, std::vector<std::unique_ptr<Particip
   }
 }
 
+/// Step 3: the interface mesh goes from the continuum to the DEM
+/// (docs/theory/coupling.md §2). Returns its node count (0 for an uncoupled run).
+std::int64_t install_interface(Participant* dem, Participant* continuum, milliseconds deadline) {
+  if (dem == nullptr || continuum == nullptr) return 0;
+  protocol::InterfaceMesh interface;
+  try {
+    interface = continuum->client().get_interface(deadline);
+  } catch (const std::exception& e) {
+    continuum->fail(e, "sending its interface mesh");
+  }
+  try {
+    dem->client().set_interface(interface, deadline);
+  } catch (const std::exception& e) {
+    dem->fail(e, "installing the interface mesh as coupling walls");
+  }
+  return interface.node_count();
+}
+
+/// Throws UserError when `resumed` cannot continue with these participants.
+void check_can_resume(const CouplerCheckpoint& resumed, const Scenario& scenario, const std::vector<std::unique_ptr<Participant>>& participants) {
+  RunCheckpoints::check_resumable(resumed, scenario, participants);
+  for (const auto& p : participants)
+    if (!p->has(protocol::capability::checkpoint))
+      throw UserError("cannot resume: the " + p->spec().slot + " server '" + p->spec().program + "' lacks capability 'checkpoint'");
+}
+
+/// The results file's `versions` attribute: the coupler's, the protocol's and each server's.
+nlohmann::json program_versions(const std::vector<std::unique_ptr<Participant>>& participants) {
+  nlohmann::json versions = {{"coupler", {{"name", "coupler"}, {"version", std::string(project_version())}}},
+                             {"protocol", protocol::version_string()}};
+  for (const auto& p : participants)
+    versions[p->spec().slot] = {{"name", p->info().solver_name},
+                                {"version", p->info().solver_version},
+                                {"protocol", p->info().protocol_version},
+                                {"configured", p->configured_info()}};
+  return versions;
+}
+
+/// Creates the run's folder and its logs folder; a new run also gets a copy of its scenario there.
+void prepare_output_folder(const fs::path& out_dir, const fs::path& log_dir, const Scenario& scenario, bool resume) {
+  std::error_code ec;
+  fs::create_directories(log_dir, ec);
+  if (ec) throw UserError("cannot create the output folder '" + log_dir.string() + "': " + ec.message() + "; choose another with --out");
+  if (!resume) {  // a resumed run reads its scenario from this copy
+    std::ofstream copy(out_dir / "scenario.json");
+    copy << readable_json(scenario.document) << "\n";
+  }
+}
+
+/// Per slot: configure's info.monitor_units (null for a server that declares none).
+std::map<std::string, nlohmann::json> declared_units(const std::vector<std::unique_ptr<Participant>>& participants) {
+  std::map<std::string, nlohmann::json> units;
+  for (const auto& p : participants) units[p->spec().slot] = p->configured_info().value(protocol::monitor_units_key, nlohmann::json());
+  return units;
+}
+
+/// Per slot: {name, version} of the server, which a checkpoint records.
+nlohmann::json solver_names(const std::vector<std::unique_ptr<Participant>>& participants) {
+  nlohmann::json solvers = nlohmann::json::object();
+  for (const auto& p : participants) solvers[p->spec().slot] = {{"name", p->info().solver_name}, {"version", p->info().solver_version}};
+  return solvers;
+}
+
+/// Checkpoints need every server's capability; without run.checkpoint_every a
+/// stop by signal still writes one where they have it.
+bool every_can_checkpoint(const std::vector<std::unique_ptr<Participant>>& participants) {
+  return std::all_of(participants.begin(), participants.end(), [](const auto& p) { return p->has(protocol::capability::checkpoint); });
+}
+
+/// The run's first line in the log.
+void announce_run(std::ostream& log, const Scenario& scenario, const ExchangeTiming& timing, const std::optional<CouplerCheckpoint>& resumed,
+                  const Participant* dem, const Participant* continuum, std::int64_t n_nodes) {
+  log << (resumed ? "Resuming run '" : "Run '") << scenario.name << "'";
+  if (resumed) log << " after exchange " << resumed->loop.coupling.exchanges_done;
+  log << ": " << scenario.run.exchanges << " exchanges";
+  if (dem) log << ", " << timing.dem_steps_per_exchange << " DEM step(s) of " << timing.dt_dem << " s";
+  if (continuum) log << ", " << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s";
+  if (dem && continuum) log << ", " << n_nodes << " interface nodes";
+  log << " each." << std::endl;  // flushed: a supervisor reading the log sees the run start
+}
+
+/// What the exchanges of a started run use (run_scenario sets it up).
+struct StartedRun {
+  const Scenario& scenario;
+  const RunOptions& options;
+  std::vector<std::unique_ptr<Participant>>& participants;
+  StopRequest& stop;
+  milliseconds deadline;
+  ResultsWriter& writer;
+  RunRecorder& recorder;
+  const RunCheckpoints& checkpoints;
+  nlohmann::json solvers;  ///< per slot {name, version}, for the checkpoints
+  bool can_checkpoint;     ///< every server has capability checkpoint
+};
+
+/// How the exchanges ended.
+struct LoopOutcome {
+  bool stopped_by_signal = false;
+  bool equilibrium_reached = false;
+  bool monitor_stop_reached = false;
+};
+
+/// Step 5: the exchanges. The scheme advances the participants; this records
+/// each exchange, takes the snapshots and checkpoints that fall due, reports
+/// progress and ends the run on a signal or a run.stop_when condition.
+class ExchangeLoop {
+ public:
+  /// `loop`: the state the run continues from; kept up to date with the last exchange.
+  ExchangeLoop(StartedRun& run, CouplingScheme& scheme, LoopState& loop)
+      : run_(run),
+        spec_(run.scenario.run),
+        scheme_(scheme),
+        loop_(loop),
+        progress_(std::cerr, run.scenario.name, spec_.exchanges, run.options.progress),
+        wall_start_(std::chrono::steady_clock::now() -
+                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(loop.wall_time_s))),
+        last_flush_(std::chrono::steady_clock::now()) {}
+
+  LoopOutcome run() {
+    LoopOutcome outcome;
+    for (std::int64_t done = loop_.coupling.exchanges_done; done < spec_.exchanges;) {
+      if (run_.stop.requested()) {
+        outcome.stopped_by_signal = true;
+        // Stopped at an exchange boundary with every server answering: a checkpoint, so that `run --resume` continues from here.
+        if (run_.can_checkpoint && done > 0) {
+          run_.stop.grant(run_.deadline);
+          write_checkpoint();
+        }
+        break;
+      }
+      ExchangeResult result = scheme_.advance();
+      done = result.exchange + 1;
+      loop_.monitors = std::move(result.monitors);
+      track_peak_pile_force();
+      record(result);
+      write_what_is_due(done, result.time_s);
+      progress_.update(done, progress_detail(result.time_s));
+      if (stop_condition_met(done, outcome)) break;
+    }
+    progress_.finish();
+    loop_.coupling = scheme_.export_state();
+    return outcome;
+  }
+
+  /// s, wall time of the run's exchanges so far (across resumed processes).
+  [[nodiscard]] double elapsed() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count(); }
+
+ private:
+  void write_checkpoint() {
+    loop_.wall_time_s = elapsed();
+    loop_.coupling = scheme_.export_state();
+    run_.checkpoints.write(run_.participants, {run_.scenario.document, run_.solvers, run_.writer.resume_point(), run_.recorder.sources(), loop_},
+                           run_.deadline);
+    last_flush_ = std::chrono::steady_clock::now();
+  }
+
+  [[nodiscard]] double dem_monitor(const char* name) const {
+    const auto dem = loop_.monitors.find("dem");
+    return dem == loop_.monitors.end() ? kNaN : scalar_monitor(dem->second, name);
+  }
+
+  void track_peak_pile_force() {
+    const double pile_force = dem_monitor("pile_force_n");
+    if (std::isfinite(pile_force) && !(pile_force <= loop_.peak_pile_force)) loop_.peak_pile_force = pile_force;
+  }
+
+  void record(const ExchangeResult& r) {
+    const std::map<std::string, double> fixed = {
+        {"exchange", double(r.exchange + 1)},
+        {"step_dem", double(r.dem_step)},
+        {"step_continuum", double(r.continuum_step)},
+        {"time_s", r.time_s},
+        {"wall_time_s", elapsed()},
+        {"interface_force_on_dem_x", r.force_on_dem[0]},
+        {"interface_force_on_dem_y", r.force_on_dem[1]},
+        {"interface_force_on_dem_z", r.force_on_dem[2]},
+        {"interface_force_on_continuum_x", r.force_on_continuum[0]},
+        {"interface_force_on_continuum_y", r.force_on_continuum[1]},
+        {"interface_force_on_continuum_z", r.force_on_continuum[2]},
+    };
+    run_.recorder.record(fixed, loop_.monitors);
+  }
+
+  /// Snapshots and checkpoints that fall due after exchange `done` (the last
+  /// exchange's are written by the run's end), and the results file's flush.
+  void write_what_is_due(std::int64_t done, double time) {
+    const bool snapshot_due = spec_.snapshot_every > 0 && done % spec_.snapshot_every == 0 && done < spec_.exchanges;
+    if (snapshot_due) write_snapshots(run_.writer, run_.participants, time, run_.deadline);
+    if (spec_.checkpoint_every > 0 && done % spec_.checkpoint_every == 0 && done < spec_.exchanges) write_checkpoint();
+    // Flush at most about once a second: the file stays readable by others
+    // during long runs without an HDF5 flush per exchange. Failures close the
+    // writer, which writes every buffered row.
+    if (snapshot_due || std::chrono::steady_clock::now() - last_flush_ > std::chrono::seconds(1)) {
+      run_.writer.flush();
+      last_flush_ = std::chrono::steady_clock::now();
+    }
+  }
+
+  [[nodiscard]] std::string progress_detail(double time) const {
+    std::ostringstream detail;
+    detail.precision(3);
+    detail << "t=" << time << " s";
+    if (const double pile_force = dem_monitor("pile_force_n"); std::isfinite(pile_force))
+      detail << " pile " << 1e3 * dem_monitor("pile_displacement_m") << " mm, " << pile_force << " N";
+    if (spec_.stop_unbalanced_force_ratio)  // a run that stops on equilibrium: how far from it
+      detail << " unbalanced " << largest_unbalanced_ratio(loop_.monitors) << " (stop at " << *spec_.stop_unbalanced_force_ratio << ")";
+    return detail.str();
+  }
+
+  bool stop_condition_met(std::int64_t done, LoopOutcome& outcome) const {
+    if (done < spec_.stop_min_exchanges) return false;
+    outcome.equilibrium_reached =
+        spec_.stop_unbalanced_force_ratio && every_in_equilibrium(loop_.monitors, *spec_.stop_unbalanced_force_ratio);
+    outcome.monitor_stop_reached = !outcome.equilibrium_reached && spec_.stop_monitor &&
+                                   monitor_reached(loop_.monitors, *spec_.stop_monitor, spec_.stop_monitor_at_least);
+    return outcome.equilibrium_reached || outcome.monitor_stop_reached;
+  }
+
+  StartedRun& run_;
+  const RunSpec& spec_;
+  CouplingScheme& scheme_;
+  LoopState& loop_;
+  ProgressLine progress_;
+  std::chrono::steady_clock::time_point wall_start_;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+/// The results file's `summary` attribute.
+nlohmann::json run_summary(const RunSpec& spec, const CouplingState& state, const LoopOutcome& outcome, double end_time, double wall) {
+  nlohmann::json summary = {{"exchanges_completed", state.exchanges_done},
+                            {"dem_steps", state.dem_step},
+                            {"continuum_steps", state.continuum_step},
+                            {"end_time_s", end_time},
+                            {"wall_time_s", wall},
+                            // null when no exchange could be checked, never a misleading 0
+                            {"max_relative_force_mismatch",
+                             state.unchecked_balances < state.exchanges_done ? nlohmann::json(state.worst_balance) : nlohmann::json()},
+                            {"force_balance_unchecked_exchanges", state.unchecked_balances},
+                            {"stopped_by_signal", outcome.stopped_by_signal}};
+  if (spec.stop_unbalanced_force_ratio) summary["equilibrium_reached"] = outcome.equilibrium_reached;
+  if (spec.stop_monitor) summary["stop_monitor_reached"] = outcome.monitor_stop_reached;
+  return summary;
+}
+
+/// The summary sentences of the final text (without the paths of the results).
+std::string summary_text(const Scenario& scenario, const LoopState& loop, const LoopOutcome& outcome, bool has_dem, bool has_continuum,
+                         double end_time, double wall) {
+  const CouplingState& state = loop.coupling;
+  const RunSpec& spec = scenario.run;
+  std::ostringstream text;
+  text.precision(4);
+  text << "Run '" << scenario.name << (outcome.stopped_by_signal ? "' was stopped after " : "' finished: ") << state.exchanges_done << " exchanges";
+  if (has_dem) text << " (" << state.dem_step << " DEM steps";
+  if (has_continuum) text << (has_dem ? ", " : " (") << state.continuum_step << " continuum steps";
+  text << ", t = " << end_time << " s) in " << format_duration(wall) << ".";
+  if (spec.stop_unbalanced_force_ratio)
+    text << (outcome.equilibrium_reached ? " Equilibrium reached: every unbalanced_force_ratio <= "
+                                         : " Equilibrium NOT reached within run.exchanges: some unbalanced_force_ratio > ")
+         << *spec.stop_unbalanced_force_ratio << " (run.stop_when).";
+  if (spec.stop_monitor)
+    text << (outcome.monitor_stop_reached ? " Stopped when " : " Did NOT reach ") << *spec.stop_monitor << " >= " << spec.stop_monitor_at_least
+         << " (run.stop_when).";
+  if (std::isfinite(loop.peak_pile_force)) {
+    const auto dem = loop.monitors.find("dem");
+    const nlohmann::json last = dem == loop.monitors.end() ? nlohmann::json() : dem->second;
+    text << " Pile penetration " << 1e3 * scalar_monitor(last, "pile_displacement_m") << " mm, final pile force "
+         << scalar_monitor(last, "pile_force_n") << " N (peak " << loop.peak_pile_force << " N).";
+  }
+  if (has_dem && has_continuum && state.unchecked_balances == 0)
+    text << " The interface forces balanced at every exchange (worst relative mismatch " << state.worst_balance << ").";
+  else if (has_dem && has_continuum) {
+    text << " The interface force balance was NOT checked at " << state.unchecked_balances << " of " << state.exchanges_done
+         << " exchanges: " << state.missing_balance_monitors << " (SPEC.md §6.3)";
+    if (state.unchecked_balances < state.exchanges_done) text << "; where checked, the worst relative mismatch was " << state.worst_balance;
+    text << ".";
+  }
+  return text.str();
+}
+
 }  // namespace
 
 void check_scenario(const Scenario& scenario, std::ostream& log) {
@@ -359,10 +609,8 @@ void check_scenario(const Scenario& scenario, std::ostream& log) {
   std::vector<std::unique_ptr<Participant>> participants;
   try {
     participants = start_participants(context, scenario, log_dir, never);
-    Participant* dem = nullptr;
-    Participant* continuum = nullptr;
-    for (auto& p : participants) (p->spec().slot == "dem" ? dem : continuum) = p.get();
-    const Timing timing = choose_timing(scenario, dem, continuum);
+    const auto [dem, continuum] = by_slot(participants);
+    const ExchangeTiming timing = choose_timing(scenario, dem, continuum);
     for (auto& p : participants)
       log << "  " << p->spec().slot << ": " << p->info().solver_name << " " << p->info().solver_version << " accepted its section\n";
     log << "  exchange: " << timing.dem_steps_per_exchange << " DEM step(s) of " << timing.dt_dem << " s, "
@@ -379,13 +627,8 @@ void check_scenario(const Scenario& scenario, std::ostream& log) {
 int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostream& log, std::ostream& error_log) {
   const fs::path out_dir = options.output_directory.empty() ? scenario.output_directory : options.output_directory;
   const fs::path log_dir = out_dir / "logs";
-  std::error_code ec;
-  fs::create_directories(log_dir, ec);
-  if (ec) throw UserError("cannot create the output folder '" + log_dir.string() + "': " + ec.message() + "; choose another with --out");
-  if (!options.resume) {  // a resumed run reads its scenario from this copy
-    std::ofstream copy(out_dir / "scenario.json");
-    copy << readable_json(scenario.document) << "\n";
-  }
+  const fs::path results_file = out_dir / "results.h5";
+  prepare_output_folder(out_dir, log_dir, scenario, options.resume);
   const RunCheckpoints checkpoints(out_dir);
   // Read before any server starts: a run without a checkpoint is refused at once.
   const std::optional<CouplerCheckpoint> resumed = options.resume ? std::optional(checkpoints.read()) : std::nullopt;
@@ -397,7 +640,6 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     for (auto& p : participants) p->stop();
   };
   std::unique_ptr<ResultsWriter> writer;
-  int status = 0;
   // A run that ends before its summary: the reason goes into the results file
   // as attribute `attribute` and to the error log; what was written stays readable.
   const auto end_early = [&](const char* attribute, const std::string& reason, int exit_status) {
@@ -411,315 +653,54 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     }
     stop_all();
     error_log << "coupler: run '" << scenario.name << "' " << reason << "\n";
-    if (writer) error_log << "Results up to then are in " << (out_dir / "results.h5").string() << "\n";
+    if (writer) error_log << "Results up to then are in " << results_file.string() << "\n";
     return exit_status;
   };
   try {
     // Steps 1–2: start, greet, configure.
     participants = start_participants(context, scenario, log_dir, stop);
-    Participant* dem = nullptr;
-    Participant* continuum = nullptr;
-    for (auto& p : participants) (p->spec().slot == "dem" ? dem : continuum) = p.get();
-    if (resumed) {
-      RunCheckpoints::check_resumable(*resumed, scenario, participants);
-      for (auto& p : participants)
-        if (!p->has(protocol::capability::checkpoint))
-          throw UserError("cannot resume: the " + p->spec().slot + " server '" + p->spec().program + "' lacks capability 'checkpoint'");
-    }
-    const bool coupled = dem != nullptr && continuum != nullptr;
+    const auto [dem, continuum] = by_slot(participants);
+    if (resumed) check_can_resume(*resumed, scenario, participants);
     const milliseconds deadline = milliseconds_from_seconds(scenario.run.deadline_s);
+    const std::int64_t n_nodes = install_interface(dem, continuum, deadline);
+    const ExchangeTiming timing = choose_timing(scenario, dem, continuum);  // step 4
 
-    // Step 3: the interface mesh goes from the continuum to the DEM (docs/theory/coupling.md §2).
-    protocol::InterfaceMesh interface;
-    if (coupled) {
-      try {
-        interface = continuum->client().get_interface(deadline);
-      } catch (const std::exception& e) {
-        continuum->fail(e, "sending its interface mesh");
-      }
-      try {
-        dem->client().set_interface(interface, deadline);
-      } catch (const std::exception& e) {
-        dem->fail(e, "installing the interface mesh as coupling walls");
-      }
-    }
-    const std::int64_t n_nodes = interface.node_count();
-
-    // Step 4: time steps.
-    const Timing timing = choose_timing(scenario, dem, continuum);
-
-    nlohmann::json versions = {{"coupler", {{"name", "coupler"}, {"version", std::string(project_version())}}},
-                               {"protocol", protocol::version_string()}};
-    for (auto& p : participants)
-      versions[p->spec().slot] = {{"name", p->info().solver_name},
-                                  {"version", p->info().solver_version},
-                                  {"protocol", p->info().protocol_version},
-                                  {"configured", p->configured_info()}};
     // Step 5 of a resumed run: every server continues from its checkpoint, the results file from where the checkpoint left it.
-    if (resumed) {
-      checkpoints.restore(participants, resumed->loop, deadline);
-      writer = std::make_unique<ResultsWriter>(ResultsWriter::reopen(out_dir / "results.h5", resumed->results));
-    } else {
-      writer = std::make_unique<ResultsWriter>(out_dir / "results.h5", scenario.document, versions);
-    }
-    std::map<std::string, nlohmann::json> declared_units;
-    for (auto& p : participants) declared_units[p->spec().slot] = p->configured_info().value(protocol::monitor_units_key, nlohmann::json());
-    RunRecorder recorder(*writer, std::move(declared_units));
+    if (resumed) checkpoints.restore(participants, resumed->loop, deadline);
+    writer = resumed ? std::make_unique<ResultsWriter>(ResultsWriter::reopen(results_file, resumed->results))
+                     : std::make_unique<ResultsWriter>(results_file, scenario.document, program_versions(participants));
+    RunRecorder recorder(*writer, declared_units(participants));
     if (resumed) {
       recorder.resume(resumed->recorder);
     } else {
       write_snapshots(*writer, participants, 0.0, deadline);
       writer->flush();
     }
-    nlohmann::json solvers = nlohmann::json::object();
-    for (auto& p : participants) solvers[p->spec().slot] = {{"name", p->info().solver_name}, {"version", p->info().solver_version}};
-    // Checkpoints need every server's capability; without run.checkpoint_every a stop by signal still writes one where they have it.
-    bool can_checkpoint = true;
-    for (auto& p : participants) can_checkpoint = can_checkpoint && p->has(protocol::capability::checkpoint);
-
-    log << (resumed ? "Resuming run '" : "Run '") << scenario.name << "'";
-    if (resumed) log << " after exchange " << resumed->loop.exchanges_done;
-    log << ": " << scenario.run.exchanges << " exchanges";
-    if (dem) log << ", " << timing.dem_steps_per_exchange << " DEM step(s) of " << timing.dt_dem << " s";
-    if (continuum) log << ", " << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s";
-    if (coupled) log << ", " << n_nodes << " interface nodes";
-    log << " each." << std::endl;  // flushed: a supervisor reading the log sees the run start
+    announce_run(log, scenario, timing, resumed, dem, continuum, n_nodes);
 
     // Step 5: the exchanges.
-    // Interface kinematics. The continuum returns its gridpoint velocity and
-    // displacement at the end of each advance; the DEM moves its wall vertices
-    // at the velocity it is sent for the whole exchange. Sending the bare
-    // end-of-advance velocity would let the wall drift from the gridpoints
-    // whenever k or m > 1 (the continuum's velocity varies inside its advance),
-    // so the coupler tracks where it has moved the wall (x += v·dt, step by
-    // step, as the DEM does) and adds the correction that brings the wall onto
-    // the continuum's displacement: v_sent = v + (u_continuum − u_wall) / T.
-    // Everything the loop carries between exchanges is in `loop` (run_checkpoint.hpp), so a checkpoint holds it all.
+    SerialCouplingScheme scheme(dem, continuum, timing, n_nodes, scenario.coupling.force_balance_tolerance, deadline, stop);
     LoopState loop;
     if (resumed) {
       loop = resumed->loop;
-    } else {
-      loop.velocity.assign(std::size_t(n_nodes) * 3, 0.0);
-      loop.continuum_displacement.assign(loop.velocity.size(), 0.0);
-      loop.wall_displacement.assign(loop.velocity.size(), 0.0);
+      scheme.import_state(loop.coupling);
     }
-    std::vector<double>& velocity = loop.velocity;
-    std::vector<double>& continuum_displacement = loop.continuum_displacement;
-    std::vector<double>& wall_displacement = loop.wall_displacement;
-    std::int64_t& dem_step = loop.dem_step;
-    std::int64_t& continuum_step = loop.continuum_step;
-    double& worst_balance = loop.worst_balance;
-    // Exchanges at which a side sent no interface force monitor (SPEC.md §6.3
-    // names them, but a server may omit them): the balance was not checked there.
-    std::int64_t& unchecked_balances = loop.unchecked_balances;
-    std::string& missing_balance_monitors = loop.missing_balance_monitors;
-    double& peak_pile_force = loop.peak_pile_force;
-    std::int64_t& done = loop.exchanges_done;
-    std::map<std::string, nlohmann::json>& monitors = loop.monitors;
-    ProgressLine progress(std::cerr, scenario.name, scenario.run.exchanges, options.progress);
-    const auto wall_start = std::chrono::steady_clock::now() - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                                  std::chrono::duration<double>(loop.wall_time_s));
-    auto last_flush = std::chrono::steady_clock::now();
-    bool equilibrium_reached = false;
-    bool monitor_stop_reached = false;
-    const auto write_checkpoint = [&] {
-      loop.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-      checkpoints.write(participants, {scenario.document, solvers, writer->resume_point(), recorder.sources(), loop}, deadline);
-      last_flush = std::chrono::steady_clock::now();
-    };
-    for (std::int64_t exchange = loop.exchanges_done; exchange < scenario.run.exchanges; ++exchange) {
-      if (options.stop_requested != nullptr && options.stop_requested->load()) {
-        status = 130;
-        // Stopped at an exchange boundary with every server answering: a checkpoint, so that `run --resume` continues from here.
-        if (can_checkpoint && done > 0) {
-          stop.grant(deadline);
-          write_checkpoint();
-        }
-        break;
-      }
-      std::vector<protocol::Array> to_continuum;
-      if (dem != nullptr) {
-        std::vector<protocol::Array> inputs;
-        if (coupled) {
-          const double exchange_time = timing.exchange_duration();
-          std::vector<double> sent(velocity.size());
-          for (std::size_t i = 0; i < sent.size(); ++i) {
-            stop.check("the coupler's update of the wall positions");  // k can be 1e9 steps per node
-            sent[i] = velocity[i] + (continuum_displacement[i] - wall_displacement[i]) / exchange_time;
-            for (std::int64_t s = 0; s < timing.dem_steps_per_exchange; ++s) wall_displacement[i] += sent[i] * timing.dt_dem;
-          }
-          inputs.push_back(protocol::Array::from_f64(protocol::field::velocity, {n_nodes, 3}, sent));
-        }
-        protocol::Message reply;
-        try {
-          reply = dem->client().advance(dem_step, timing.dem_steps_per_exchange, timing.dt_dem, std::move(inputs), deadline);
-          if (coupled) {
-            const std::vector<double> force = protocol::require_f64(reply.arrays, protocol::field::force, n_nodes, 3);
-            require_finite_rows(force, "force");
-            to_continuum.push_back(protocol::Array::from_f64(protocol::field::force, {n_nodes, 3}, force));
-            // A driven continuum also lends its interface mass (SPEC.md §6.1).
-            if (protocol::find_array(reply.arrays, protocol::field::mass) != nullptr)
-              to_continuum.push_back(protocol::Array::from_f64(protocol::field::mass, {n_nodes},
-                                                               protocol::require_f64(reply.arrays, protocol::field::mass, n_nodes, 0)));
-          }
-        } catch (const std::exception& e) {
-          dem->fail(e, "advancing from step " + std::to_string(dem_step));
-        }
-        dem_step = *reply.step;
-        monitors["dem"] = reply.body.value("monitors", nlohmann::json::object());
-      }
-      if (continuum != nullptr) {
-        protocol::Message reply;
-        try {
-          reply = continuum->client().advance(continuum_step, timing.continuum_steps_per_exchange, timing.dt_continuum,
-                                              std::move(to_continuum), deadline);
-          if (coupled) {
-            velocity = protocol::require_f64(reply.arrays, protocol::field::velocity, n_nodes, 3);
-            continuum_displacement = protocol::require_f64(reply.arrays, protocol::field::displacement, n_nodes, 3);
-            // Caught here, a NaN is blamed on the continuum that produced it, not on the DEM it would break next.
-            require_finite_rows(velocity, "velocity");
-            require_finite_rows(continuum_displacement, "displacement");
-          }
-        } catch (const std::exception& e) {
-          continuum->fail(e, "advancing from step " + std::to_string(continuum_step));
-        }
-        continuum_step = *reply.step;
-        monitors["continuum"] = reply.body.value("monitors", nlohmann::json::object());
-      }
+    StartedRun run{scenario, options, participants, stop, deadline, *writer, recorder, checkpoints, solver_names(participants),
+                   every_can_checkpoint(participants)};
+    ExchangeLoop exchanges(run, scheme, loop);
+    const LoopOutcome outcome = exchanges.run();
 
-      // The interface forces must be equal and opposite (docs/theory/coupling.md §4): the reaction
-      // the DEM computed on its particles against what the continuum applied.
-      std::array<double, 3> on_dem{kNaN, kNaN, kNaN};
-      std::array<double, 3> on_continuum{kNaN, kNaN, kNaN};
-      if (coupled) {
-        const auto reaction = vector_monitor(monitors["dem"], "interface_force_reaction");
-        const auto received = vector_monitor(monitors["continuum"], "interface_force_received");
-        if (reaction) on_dem = *reaction;
-        if (received) on_continuum = *received;
-        if (!reaction || !received) {
-          ++unchecked_balances;
-          if (missing_balance_monitors.empty())
-            missing_balance_monitors = !reaction ? "the dem server sent no interface_force_reaction" : "the continuum server sent no interface_force_received";
-        } else {
-          double mismatch = 0.0;
-          double scale = 0.0;
-          for (std::size_t i = 0; i < 3; ++i) {
-            mismatch = std::max(mismatch, std::abs(on_dem[i] + on_continuum[i]));
-            scale = std::max({scale, std::abs(on_dem[i]), std::abs(on_continuum[i])});
-          }
-          // std::max drops NaN, so non-finite forces are tested for on their own.
-          const double relative = !all_finite(on_dem) || !all_finite(on_continuum) ? kNaN : scale > 0 ? mismatch / scale : mismatch;
-          if (!std::isfinite(relative) || relative > scenario.coupling.force_balance_tolerance) {
-            std::ostringstream message;
-            message << "interface force balance broken at exchange " << exchange << " (DEM step " << dem_step << "): force on the DEM side "
-                    << format_vector(on_dem) << " N (interface_force_reaction) and on the continuum " << format_vector(on_continuum)
-                    << " N (interface_force_received) are not equal and opposite; relative mismatch " << relative << " > tolerance "
-                    << scenario.coupling.force_balance_tolerance << " (coupling.force_balance_tolerance)";
-            throw ParticipantFailure(message.str());
-          }
-          worst_balance = std::max(worst_balance, relative);
-        }
-      }
-
-      const double time = dem != nullptr ? double(dem_step) * timing.dt_dem : double(continuum_step) * timing.dt_continuum;
-      const double pile_force = scalar_monitor(monitors["dem"], "pile_force_n");
-      if (std::isfinite(pile_force) && !(pile_force <= peak_pile_force)) peak_pile_force = pile_force;
-      const std::map<std::string, double> fixed = {
-          {"exchange", double(exchange + 1)},
-          {"step_dem", double(dem_step)},
-          {"step_continuum", double(continuum_step)},
-          {"time_s", time},
-          {"wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count()},
-          {"interface_force_on_dem_x", on_dem[0]},
-          {"interface_force_on_dem_y", on_dem[1]},
-          {"interface_force_on_dem_z", on_dem[2]},
-          {"interface_force_on_continuum_x", on_continuum[0]},
-          {"interface_force_on_continuum_y", on_continuum[1]},
-          {"interface_force_on_continuum_z", on_continuum[2]},
-      };
-      recorder.record(fixed, monitors);
-      ++done;  // loop.exchanges_done
-      const bool snapshot_due = scenario.run.snapshot_every > 0 && (exchange + 1) % scenario.run.snapshot_every == 0 &&
-                                exchange + 1 < scenario.run.exchanges;
-      if (snapshot_due) write_snapshots(*writer, participants, time, deadline);
-      if (scenario.run.checkpoint_every > 0 && (exchange + 1) % scenario.run.checkpoint_every == 0 && exchange + 1 < scenario.run.exchanges)
-        write_checkpoint();
-      // Flush at most about once a second: the file stays readable by others
-      // during long runs without an HDF5 flush per exchange. Failures close the
-      // writer, which writes every buffered row.
-      if (snapshot_due || std::chrono::steady_clock::now() - last_flush > std::chrono::seconds(1)) {
-        writer->flush();
-        last_flush = std::chrono::steady_clock::now();
-      }
-
-      std::ostringstream detail;
-      detail.precision(3);
-      detail << "t=" << time << " s";
-      if (std::isfinite(pile_force))
-        detail << " pile " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, " << pile_force << " N";
-      if (scenario.run.stop_unbalanced_force_ratio)  // a run that stops on equilibrium: how far from it
-        detail << " unbalanced " << largest_unbalanced_ratio(monitors) << " (stop at " << *scenario.run.stop_unbalanced_force_ratio << ")";
-      progress.update(done, detail.str());
-      if (scenario.run.stop_unbalanced_force_ratio && done >= scenario.run.stop_min_exchanges &&
-          every_in_equilibrium(monitors, *scenario.run.stop_unbalanced_force_ratio)) {
-        equilibrium_reached = true;
-        break;
-      }
-      if (scenario.run.stop_monitor && done >= scenario.run.stop_min_exchanges &&
-          monitor_reached(monitors, *scenario.run.stop_monitor, scenario.run.stop_monitor_at_least)) {
-        monitor_stop_reached = true;
-        break;
-      }
-    }
-    progress.finish();
     // Step 6: final snapshot and summary.
-    const double end_time = dem != nullptr ? double(dem_step) * timing.dt_dem : double(continuum_step) * timing.dt_continuum;
+    const double end_time = scheme.time();
     write_snapshots(*writer, participants, end_time, deadline);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    nlohmann::json summary = {{"exchanges_completed", done},
-                              {"dem_steps", dem_step},
-                              {"continuum_steps", continuum_step},
-                              {"end_time_s", end_time},
-                              {"wall_time_s", wall},
-                              // null when no exchange could be checked, never a misleading 0
-                              {"max_relative_force_mismatch", unchecked_balances < done ? nlohmann::json(worst_balance) : nlohmann::json()},
-                              {"force_balance_unchecked_exchanges", unchecked_balances},
-                              {"stopped_by_signal", status == 130}};
-    if (scenario.run.stop_unbalanced_force_ratio) summary["equilibrium_reached"] = equilibrium_reached;
-    if (scenario.run.stop_monitor) summary["stop_monitor_reached"] = monitor_stop_reached;
-    writer->set_attribute("summary", summary.dump());
+    const double wall = exchanges.elapsed();
+    writer->set_attribute("summary", run_summary(scenario.run, loop.coupling, outcome, end_time, wall).dump());
     writer->close();
     stop_all();
-
-    std::ostringstream text;
-    text.precision(4);
-    text << (status == 130 ? "Run '" + scenario.name + "' was stopped after " : "Run '" + scenario.name + "' finished: ") << done
-         << " exchanges";
-    if (dem) text << " (" << dem_step << " DEM steps";
-    if (continuum) text << (dem ? ", " : " (") << continuum_step << " continuum steps";
-    text << ", t = " << end_time << " s) in " << format_duration(wall) << ".";
-    if (scenario.run.stop_unbalanced_force_ratio)
-      text << (equilibrium_reached ? " Equilibrium reached: every unbalanced_force_ratio <= " : " Equilibrium NOT reached within run.exchanges: some unbalanced_force_ratio > ")
-           << *scenario.run.stop_unbalanced_force_ratio << " (run.stop_when).";
-    if (scenario.run.stop_monitor)
-      text << (monitor_stop_reached ? " Stopped when " : " Did NOT reach ") << *scenario.run.stop_monitor << " >= "
-           << scenario.run.stop_monitor_at_least << " (run.stop_when).";
-    if (std::isfinite(peak_pile_force))
-      text << " Pile penetration " << 1e3 * scalar_monitor(monitors["dem"], "pile_displacement_m") << " mm, final pile force "
-           << scalar_monitor(monitors["dem"], "pile_force_n") << " N (peak " << peak_pile_force << " N).";
-    if (coupled && unchecked_balances == 0)
-      text << " The interface forces balanced at every exchange (worst relative mismatch " << worst_balance << ").";
-    else if (coupled) {
-      text << " The interface force balance was NOT checked at " << unchecked_balances << " of " << done << " exchanges: "
-           << missing_balance_monitors << " (SPEC.md §6.3)";
-      if (unchecked_balances < done) text << "; where checked, the worst relative mismatch was " << worst_balance;
-      text << ".";
-    }
-    text << "\nResults: " << (out_dir / "results.h5").string() << " (time series and snapshots), " << writer->xdmf_path().string()
-         << " (open in ParaView), server logs in " << log_dir.string() << ".\nPlots: tools/plot_results.py " << (out_dir / "results.h5").string()
-         << "\n";
-    log << text.str();
-    return status;
+    log << summary_text(scenario, loop, outcome, dem != nullptr, continuum != nullptr, end_time, wall) << "\nResults: " << results_file.string()
+        << " (time series and snapshots), " << writer->xdmf_path().string() << " (open in ParaView), server logs in " << log_dir.string()
+        << ".\nPlots: tools/plot_results.py " << results_file.string() << "\n";
+    return outcome.stopped_by_signal ? 130 : 0;
   } catch (const ParticipantFailure& failure) {
     return end_early("failure", std::string("stopped: ") + failure.what(), 1);
   } catch (const RunInterrupted& interrupted) {

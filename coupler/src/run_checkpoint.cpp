@@ -28,15 +28,15 @@ std::string encode(const CouplerCheckpoint& c) {
   out.string(nlohmann::json{{"scenario", c.scenario}, {"solvers", c.solvers}, {"results", c.results}, {"recorder", c.recorder}}.dump());
   const LoopState& l = c.loop;
   out.tag("loop");
-  out.value(l.exchanges_done);
-  out.value(l.dem_step);
-  out.value(l.continuum_step);
-  out.vector(l.velocity);
-  out.vector(l.continuum_displacement);
-  out.vector(l.wall_displacement);
-  out.value(l.worst_balance);
-  out.value(l.unchecked_balances);
-  out.string(l.missing_balance_monitors);
+  out.value(l.coupling.exchanges_done);
+  out.value(l.coupling.dem_step);
+  out.value(l.coupling.continuum_step);
+  out.vector(l.coupling.velocity);
+  out.vector(l.coupling.continuum_displacement);
+  out.vector(l.coupling.wall_displacement);
+  out.value(l.coupling.worst_balance);
+  out.value(l.coupling.unchecked_balances);
+  out.string(l.coupling.missing_balance_monitors);
   out.value(l.peak_pile_force);
   out.value(l.wall_time_s);
   out.string(nlohmann::json(l.monitors).dump());  // numbers as shortest round-trip text: the same doubles come back
@@ -54,15 +54,15 @@ CouplerCheckpoint decode(std::string_view bytes, const fs::path& file) {
   c.recorder = meta.at("recorder");
   LoopState& l = c.loop;
   in.tag("loop");
-  in.value(l.exchanges_done);
-  in.value(l.dem_step);
-  in.value(l.continuum_step);
-  in.vector(l.velocity);
-  in.vector(l.continuum_displacement);
-  in.vector(l.wall_displacement);
-  in.value(l.worst_balance);
-  in.value(l.unchecked_balances);
-  l.missing_balance_monitors = in.string();
+  in.value(l.coupling.exchanges_done);
+  in.value(l.coupling.dem_step);
+  in.value(l.coupling.continuum_step);
+  in.vector(l.coupling.velocity);
+  in.vector(l.coupling.continuum_displacement);
+  in.vector(l.coupling.wall_displacement);
+  in.value(l.coupling.worst_balance);
+  in.value(l.coupling.unchecked_balances);
+  l.coupling.missing_balance_monitors = in.string();
   in.value(l.peak_pile_force);
   in.value(l.wall_time_s);
   l.monitors = nlohmann::json::parse(in.string()).get<std::map<std::string, nlohmann::json>>();
@@ -112,7 +112,7 @@ void RunCheckpoints::write(std::vector<std::unique_ptr<Participant>>& participan
     }
   }
   try {
-    protocol::write_checkpoint_file(partial / kCouplerFile, coupler_header(state.scenario, state.loop.exchanges_done), encode(state));
+    protocol::write_checkpoint_file(partial / kCouplerFile, coupler_header(state.scenario, state.loop.coupling.exchanges_done), encode(state));
   } catch (const protocol::ProtocolError& e) {
     throw UserError(e.what());
   }
@@ -171,7 +171,7 @@ void RunCheckpoints::restore(std::vector<std::unique_ptr<Participant>>& particip
     } catch (const std::exception& e) {
       p->fail(e, "restoring its checkpoint " + file);
     }
-    const std::int64_t expected = slot == "dem" ? loop.dem_step : loop.continuum_step;
+    const std::int64_t expected = slot == "dem" ? loop.coupling.dem_step : loop.coupling.continuum_step;
     if (step != expected)
       throw UserError("cannot resume: " + p->label() + " restored step " + std::to_string(step) + " from " + file + " but the coupler's checkpoint is at step " +
                       std::to_string(expected) + "; the checkpoint folder mixes two checkpoints: start a new run");

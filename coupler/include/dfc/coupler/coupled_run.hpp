@@ -5,7 +5,8 @@
 //   2. configure each with its section (scenario hash checked),
 //   3. exchange the interface mesh (continuum -> dem),
 //   4. choose time steps: k DEM steps per exchange, m continuum steps covering the same time,
-//   5. run the exchanges (serial: DEM, then continuum), checking the force balance each time,
+//   5. run the exchanges through a coupling scheme (coupling_scheme.hpp; serial: DEM, then
+//      continuum, checking the force balance each time),
 //   6. write time series and snapshots (HDF5 + XDMF), report progress and a summary;
 //      every run.checkpoint_every exchanges and on a stop by signal, a coordinated
 //      checkpoint (run_checkpoint.hpp) from which `run --resume` continues bit for bit.

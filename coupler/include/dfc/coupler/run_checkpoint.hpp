@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dfc/coupler/coupling_scheme.hpp"
 #include "dfc/coupler/participant.hpp"
 #include "dfc/coupler/scenario.hpp"
 
@@ -27,15 +28,7 @@ namespace dfc::coupler {
 /// What the coupling loop carries from one exchange to the next: all of it is
 /// in a checkpoint, so a resumed loop continues bit for bit.
 struct LoopState {
-  std::int64_t exchanges_done = 0;
-  std::int64_t dem_step = 0;
-  std::int64_t continuum_step = 0;
-  /// Interface kinematics (coupled_run.cpp): the continuum's last velocity and
-  /// displacement, and where the coupler has moved the DEM's wall.
-  std::vector<double> velocity, continuum_displacement, wall_displacement;
-  double worst_balance = 0.0;
-  std::int64_t unchecked_balances = 0;
-  std::string missing_balance_monitors;
+  CouplingState coupling;  ///< the coupling scheme's (coupling_scheme.hpp): exchange index, steps, interface kinematics, force balance
   double peak_pile_force = std::numeric_limits<double>::quiet_NaN();
   double wall_time_s = 0.0;  ///< s, wall time the exchanges done took (across resumed processes)
   std::map<std::string, nlohmann::json> monitors;  ///< per slot, of the last exchange
