@@ -187,10 +187,10 @@ TEST(CentrifugeFoundationSlow, ResistanceGrowsWithTheGLevelBeyondTheScatter) {
   // The same REV (rev.stress_pa fixed) at 1 g and 100 g on three packings:
   // only the self-weight stress scaled into the bonds and gravity differ.
   // Over the same penetrations every 100 g packing must resist more than
-  // every 1 g packing (measured 41.5-47.5 N against 16.7-19.7 N at 0.0625
+  // every 1 g packing (measured 37.3-47.3 N against 12.4-14.4 N at 0.03125
   // m/s with alpha 0.2 during the loading). The initial peak
   // does not separate: the packing decides it (docs/centrifuge_foundation.md §4).
-  // Six runs of about 4.5 min each at one DEM thread.
+  // Six runs of about 8.5 min each at one DEM thread.
   const std::filesystem::path dir = run_scenario("centrifuge_pile_glevels", std::chrono::seconds(6900));
   double lowest_100g = std::numeric_limits<double>::infinity(), highest_1g = 0.0;
   for (const char* packing : {"p1", "p2", "p3"}) {
