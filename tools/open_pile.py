@@ -244,6 +244,25 @@ def ring_mean(grid, r_edges, z_edges, r_range, z_range):
     return float(np.nanmean(pick)) if np.isfinite(pick).any() else float("nan")
 
 
+def fdm_extrapolated(fdm, radius, z_range):
+    """The FDM's sigma_rr at `radius` inside its innermost zone ring: the means of its first two
+    rings over z_range, at their mid-radii, extrapolated linearly. The zone centres lie half a zone
+    out from the coupling wall, where a stress that decays outwards is already lower, so the ring
+    means alone understate the stress at the wall."""
+    r_edges, z_edges, grid = fdm
+    means, centres = [], []
+    for i in range(len(r_edges) - 1):
+        value = ring_mean(grid, r_edges, z_edges, (r_edges[i], r_edges[i + 1]), z_range)
+        if np.isfinite(value):
+            means.append(value)
+            centres.append(0.5 * (r_edges[i] + r_edges[i + 1]))
+        if len(means) == 2:
+            break
+    if len(means) < 2:
+        return float("nan")
+    return float(means[0] + (means[0] - means[1]) * (centres[0] - radius) / (centres[1] - centres[0]))
+
+
 def analyse(run, out, figures):
     r_edges, z_edges = grid_edges(run)
     stress_grid(run, r_edges=r_edges, z_edges=z_edges, group_name="open_pile_grid")
@@ -273,6 +292,9 @@ def analyse(run, out, figures):
                    "far_field": ring_mean(damage, r_edges, z_edges, (r_edges[-1] - 0.25 * d, r_edges[-1]), (z_edges[0], tip - d))},
         "fdm_sigma_rr_pa_next_to_core_at_tip": ring_mean(fdm[2], fdm[0], fdm[1], (r_edges[-1], r_edges[-1] + 0.25 * d), near_tip),
         "dem_sigma_rr_pa_core_edge_at_tip": ring_mean(sigma_rr, r_edges, z_edges, (r_edges[-1] - 0.25 * d, r_edges[-1]), near_tip),
+        # The same radius on both sides: the DEM's outer ring (its cells' centres lie D/16 and 3D/16 inside
+        # the wall) against the FDM extrapolated inwards to the ring's middle.
+        "fdm_sigma_rr_pa_extrapolated_to_core_edge_ring": fdm_extrapolated(fdm, r_edges[-1] - 0.125 * d, near_tip),
     }
     if figures:
         plot_section(run, out, "fig2b_radial_stress.png", r_edges, z_edges, sigma_rr,
