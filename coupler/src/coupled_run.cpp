@@ -23,9 +23,11 @@
 #include "dfc/coupler/progress_line.hpp"
 #include "dfc/coupler/results_writer.hpp"
 #include "dfc/coupler/run_checkpoint.hpp"
+#include "dfc/coupler/run_recorder.hpp"
 #include "dfc/coupler/serial_coupling_scheme.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/monitor_units.hpp"
+#include "dfc/protocol/progress_monitors.hpp"
 
 namespace dfc::coupler {
 
@@ -172,6 +174,35 @@ std::pair<Participant*, Participant*> by_slot(const std::vector<std::unique_ptr<
   return slots;
 }
 
+/// Per slot, the monitors its server asks the coupler to show (SPEC.md §4.2,
+/// configure's info.progress_monitors), in participant order.
+using ProgressMonitors = std::vector<std::pair<std::string, std::vector<protocol::ProgressMonitor>>>;
+
+ProgressMonitors progress_monitors(const std::vector<std::unique_ptr<Participant>>& participants) {
+  ProgressMonitors shown;
+  for (const auto& p : participants) {
+    try {
+      if (auto entries = protocol::parse_progress_monitors(p->configured_info()); !entries.empty())
+        shown.emplace_back(p->spec().slot, std::move(entries));
+    } catch (const std::invalid_argument& e) {
+      p->fail(e, "reading its configured.info (SPEC.md §4.2)");
+    }
+  }
+  return shown;
+}
+
+/// "label value unit, ..." of every slot's progress monitors in `monitors` (the last exchange's).
+std::string shown_monitors(const ProgressMonitors& progress, const std::map<std::string, nlohmann::json>& monitors) {
+  std::string shown;
+  for (const auto& [slot, entries] : progress) {
+    const auto slot_monitors = monitors.find(slot);
+    if (slot_monitors == monitors.end()) continue;
+    const std::string text = protocol::format_progress(entries, slot_monitors->second);
+    if (!text.empty()) shown += (shown.empty() ? "" : ", ") + text;
+  }
+  return shown;
+}
+
 /// Starts and greets the participants; configures them; throws on the first problem.
 std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& context, const Scenario& scenario, const fs::path& log_dir,
                                                             StopRequest& stop) {
@@ -199,113 +230,6 @@ std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& con
   }
   return participants;
 }
-
-/// The run's time series: the coupler's own columns and every monitor of
-/// every slot, each labelled with the unit its source declares (SPEC.md §6.3).
-/// A monitor that is a number is a 1-D column; an [x, y, z] one an [N, 3] column.
-class RunRecorder {
- public:
-  /// `declared_units`: per slot, configure's info.monitor_units (null for a
-  /// server that declares none, e.g. one speaking protocol 1.1).
-  RunRecorder(ResultsWriter& writer, std::map<std::string, nlohmann::json> declared_units)
-      : writer_(writer), declared_units_(std::move(declared_units)) {}
-
-  void record(const std::map<std::string, double>& fixed, const std::map<std::string, nlohmann::json>& monitors_by_slot) {
-    if (columns_.empty()) declare(fixed, monitors_by_slot);
-    std::vector<double> row;
-    for (const Source& column : columns_) {
-      if (column.slot.empty()) {
-        const auto it = fixed.find(column.key);
-        row.push_back(it == fixed.end() ? kNaN : it->second);
-        continue;
-      }
-      // A monitor missing from this reply, or of another shape than at the first row, is recorded as NaN.
-      const auto slot = monitors_by_slot.find(column.slot);
-      const nlohmann::json* value = slot == monitors_by_slot.end() || !slot->second.contains(column.key) ? nullptr : &slot->second[column.key];
-      const bool fits = value != nullptr && protocol::monitor_width(*value) == column.width;
-      if (column.width == 1) row.push_back(fits ? value->get<double>() : kNaN);
-      else
-        for (std::size_t i = 0; i < column.width; ++i) row.push_back(fits ? (*value)[i].get<double>() : kNaN);
-    }
-    writer_.append(row);
-  }
-
-  /// Where each column comes from, for a checkpoint (empty before the first row).
-  [[nodiscard]] nlohmann::json sources() const {
-    nlohmann::json out = nlohmann::json::array();
-    for (const Source& c : columns_) out.push_back({{"slot", c.slot}, {"key", c.key}, {"width", c.width}});
-    return out;
-  }
-  /// A resumed run: the columns the results file already declares.
-  void resume(const nlohmann::json& sources) {
-    for (const auto& c : sources) columns_.push_back({c.at("slot").get<std::string>(), c.at("key").get<std::string>(), c.at("width").get<std::size_t>()});
-  }
-
- private:
-  /// Where a column's values come from: `fixed[key]` when `slot` is empty, else the slot's monitor `key`.
-  struct Source {
-    std::string slot;
-    std::string key;
-    std::size_t width = 1;
-  };
-
-  /// For a server that declares no units: a guess from the monitor's name
-  /// suffix (SPEC.md §6.3 naming), stored marked as a guess.
-  static std::string unit_guessed_from_name(const std::string& name) {
-    const auto ends = [&](std::string_view suffix) { return name.ends_with(suffix); };
-    if (ends("_n_s")) return protocol::unit::newton_second;
-    if (ends("_s")) return protocol::unit::second;
-    if (ends("_m")) return protocol::unit::metre;
-    if (ends("_n")) return protocol::unit::newton;
-    if (ends("_nm")) return protocol::unit::newton_metre;
-    if (ends("_pa")) return protocol::unit::pascal;
-    if (ends("_w")) return protocol::unit::watt;
-    if (ends("_j")) return protocol::unit::joule;
-    return protocol::unit::dimensionless;
-  }
-
-  /// The unit of `slot`'s monitor `name` as its server declared it, else the guess.
-  SeriesColumn monitor_column(const std::string& slot, const std::string& name, std::size_t width) const {
-    const auto declared = declared_units_.find(slot);
-    if (declared != declared_units_.end() && declared->second.is_object()) {
-      const auto unit = declared->second.find(name);
-      if (unit != declared->second.end() && unit->is_string()) return {slot + "_" + name, unit->get<std::string>(), width};
-    }
-    return {slot + "_" + name, unit_guessed_from_name(name), width, true};
-  }
-
-  void declare(const std::map<std::string, double>& fixed, const std::map<std::string, nlohmann::json>& monitors_by_slot) {
-    // The coupler's own columns (coupled_run's `fixed`): their units are its own declaration.
-    static const std::map<std::string, std::string> coupler_units = {
-        {"exchange", protocol::unit::dimensionless},          {"step_dem", protocol::unit::dimensionless},
-        {"step_continuum", protocol::unit::dimensionless},    {"time_s", protocol::unit::second},
-        {"wall_time_s", protocol::unit::second},              {"interface_force_on_dem_x", protocol::unit::newton},
-        {"interface_force_on_dem_y", protocol::unit::newton}, {"interface_force_on_dem_z", protocol::unit::newton},
-        {"interface_force_on_continuum_x", protocol::unit::newton},
-        {"interface_force_on_continuum_y", protocol::unit::newton},
-        {"interface_force_on_continuum_z", protocol::unit::newton}};
-    std::map<std::string, std::pair<Source, SeriesColumn>> by_name;  // columns in name order, as before units were declared
-    for (const auto& [name, value] : fixed) {
-      const auto unit = coupler_units.find(name);
-      SeriesColumn column = unit != coupler_units.end() ? SeriesColumn{name, unit->second} : SeriesColumn{name, unit_guessed_from_name(name), 1, true};
-      by_name.emplace(name, std::pair{Source{"", name, 1}, std::move(column)});
-    }
-    for (const auto& [slot, monitors] : monitors_by_slot)
-      for (const auto& [name, value] : monitors.items())
-        if (const std::size_t width = protocol::monitor_width(value); width > 0)
-          by_name.emplace(slot + "_" + name, std::pair{Source{slot, name, width}, monitor_column(slot, name, width)});
-    std::vector<SeriesColumn> columns;
-    for (auto& [name, entry] : by_name) {
-      columns_.push_back(std::move(entry.first));
-      columns.push_back(std::move(entry.second));
-    }
-    writer_.declare_series(columns);
-  }
-
-  ResultsWriter& writer_;
-  std::map<std::string, nlohmann::json> declared_units_;
-  std::vector<Source> columns_;
-};
 
 void write_snapshots(ResultsWriter& writer, std::vector<std::unique_ptr<Participant>>& participants, double time, milliseconds deadline) {
   for (auto& p : participants) {
@@ -412,6 +336,7 @@ struct StartedRun {
   RunRecorder& recorder;
   const RunCheckpoints& checkpoints;
   nlohmann::json solvers;  ///< per slot {name, version}, for the checkpoints
+  ProgressMonitors progress;  ///< what the progress line and the summary show
   bool can_checkpoint;     ///< every server has capability checkpoint
 };
 
@@ -453,7 +378,6 @@ class ExchangeLoop {
       ExchangeResult result = scheme_.advance();
       done = result.exchange + 1;
       loop_.monitors = std::move(result.monitors);
-      track_peak_pile_force();
       record(result);
       write_what_is_due(done, result.time_s);
       progress_.update(done, progress_detail(result.time_s));
@@ -474,16 +398,6 @@ class ExchangeLoop {
     run_.checkpoints.write(run_.participants, {run_.scenario.document, run_.solvers, run_.writer.resume_point(), run_.recorder.sources(), loop_},
                            run_.deadline);
     last_flush_ = std::chrono::steady_clock::now();
-  }
-
-  [[nodiscard]] double dem_monitor(const char* name) const {
-    const auto dem = loop_.monitors.find("dem");
-    return dem == loop_.monitors.end() ? kNaN : scalar_monitor(dem->second, name);
-  }
-
-  void track_peak_pile_force() {
-    const double pile_force = dem_monitor("pile_force_n");
-    if (std::isfinite(pile_force) && !(pile_force <= loop_.peak_pile_force)) loop_.peak_pile_force = pile_force;
   }
 
   void record(const ExchangeResult& r) {
@@ -522,8 +436,7 @@ class ExchangeLoop {
     std::ostringstream detail;
     detail.precision(3);
     detail << "t=" << time << " s";
-    if (const double pile_force = dem_monitor("pile_force_n"); std::isfinite(pile_force))
-      detail << " pile " << 1e3 * dem_monitor("pile_displacement_m") << " mm, " << pile_force << " N";
+    if (const std::string shown = shown_monitors(run_.progress, loop_.monitors); !shown.empty()) detail << " " << shown;
     if (spec_.stop_unbalanced_force_ratio)  // a run that stops on equilibrium: how far from it
       detail << " unbalanced " << largest_unbalanced_ratio(loop_.monitors) << " (stop at " << *spec_.stop_unbalanced_force_ratio << ")";
     return detail.str();
@@ -565,8 +478,8 @@ nlohmann::json run_summary(const RunSpec& spec, const CouplingState& state, cons
 }
 
 /// The summary sentences of the final text (without the paths of the results).
-std::string summary_text(const Scenario& scenario, const LoopState& loop, const LoopOutcome& outcome, bool has_dem, bool has_continuum,
-                         double end_time, double wall) {
+std::string summary_text(const Scenario& scenario, const LoopState& loop, const ProgressMonitors& progress, const LoopOutcome& outcome,
+                         bool has_dem, bool has_continuum, double end_time, double wall) {
   const CouplingState& state = loop.coupling;
   const RunSpec& spec = scenario.run;
   std::ostringstream text;
@@ -582,12 +495,7 @@ std::string summary_text(const Scenario& scenario, const LoopState& loop, const 
   if (spec.stop_monitor)
     text << (outcome.monitor_stop_reached ? " Stopped when " : " Did NOT reach ") << *spec.stop_monitor << " >= " << spec.stop_monitor_at_least
          << " (run.stop_when).";
-  if (std::isfinite(loop.peak_pile_force)) {
-    const auto dem = loop.monitors.find("dem");
-    const nlohmann::json last = dem == loop.monitors.end() ? nlohmann::json() : dem->second;
-    text << " Pile penetration " << 1e3 * scalar_monitor(last, "pile_displacement_m") << " mm, final pile force "
-         << scalar_monitor(last, "pile_force_n") << " N (peak " << loop.peak_pile_force << " N).";
-  }
+  if (const std::string shown = shown_monitors(progress, loop.monitors); !shown.empty()) text << " At the end: " << shown << ".";
   if (has_dem && has_continuum && state.unchecked_balances == 0)
     text << " The interface forces balanced at every exchange (worst relative mismatch " << state.worst_balance << ").";
   else if (has_dem && has_continuum) {
@@ -686,7 +594,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
       scheme.import_state(loop.coupling);
     }
     StartedRun run{scenario, options, participants, stop, deadline, *writer, recorder, checkpoints, solver_names(participants),
-                   every_can_checkpoint(participants)};
+                   progress_monitors(participants), every_can_checkpoint(participants)};
     ExchangeLoop exchanges(run, scheme, loop);
     const LoopOutcome outcome = exchanges.run();
 
@@ -697,7 +605,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     writer->set_attribute("summary", run_summary(scenario.run, loop.coupling, outcome, end_time, wall).dump());
     writer->close();
     stop_all();
-    log << summary_text(scenario, loop, outcome, dem != nullptr, continuum != nullptr, end_time, wall) << "\nResults: " << results_file.string()
+    log << summary_text(scenario, loop, run.progress, outcome, dem != nullptr, continuum != nullptr, end_time, wall) << "\nResults: " << results_file.string()
         << " (time series and snapshots), " << writer->xdmf_path().string() << " (open in ParaView), server logs in " << log_dir.string()
         << ".\nPlots: tools/plot_results.py " << results_file.string() << "\n";
     return outcome.stopped_by_signal ? 130 : 0;

@@ -14,7 +14,7 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr const char* kCouplerFile = "coupler.checkpoint";
-constexpr std::uint32_t kLayoutVersion = 1;  ///< raise when LoopState's stored members change
+constexpr std::uint32_t kLayoutVersion = 2;  ///< raise when LoopState's stored members change
 
 std::string scenario_hash(const nlohmann::json& document) { return fnv1a64_hex(document.dump()); }
 
@@ -37,7 +37,6 @@ std::string encode(const CouplerCheckpoint& c) {
   out.value(l.coupling.worst_balance);
   out.value(l.coupling.unchecked_balances);
   out.string(l.coupling.missing_balance_monitors);
-  out.value(l.peak_pile_force);
   out.value(l.wall_time_s);
   out.string(nlohmann::json(l.monitors).dump());  // numbers as shortest round-trip text: the same doubles come back
   return out.take();
@@ -63,7 +62,6 @@ CouplerCheckpoint decode(std::string_view bytes, const fs::path& file) {
   in.value(l.coupling.worst_balance);
   in.value(l.coupling.unchecked_balances);
   l.coupling.missing_balance_monitors = in.string();
-  in.value(l.peak_pile_force);
   in.value(l.wall_time_s);
   l.monitors = nlohmann::json::parse(in.string()).get<std::map<std::string, nlohmann::json>>();
   in.finish();

@@ -12,6 +12,7 @@
 #include "dfc/dem/particle_stress.hpp"
 #include "dfc/dem/region_config.hpp"
 #include "dfc/protocol/monitor_units.hpp"
+#include "dfc/protocol/progress_monitors.hpp"
 
 namespace dfc::dem {
 
@@ -144,6 +145,9 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
     info["preparation"] = p;
   }
   info[protocol::monitor_units_key] = monitor_units();
+  nlohmann::json progress = nlohmann::json::array();
+  for (const auto& protocol : model_.loading) protocol->progress_monitors(progress);
+  if (!progress.empty()) info[protocol::progress_monitors_key] = protocol::to_json(protocol::parse_progress_monitors({{protocol::progress_monitors_key, progress}}));
   return info;
 }
 

@@ -12,7 +12,7 @@
 namespace dfc::dem {
 
 namespace {
-constexpr std::uint32_t kLayoutVersion = 5;  ///< raise when the stored members change
+constexpr std::uint32_t kLayoutVersion = 6;  ///< raise when the stored members change
 }  // namespace
 
 std::string DemBackend::checkpoint_state() {

@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "check.hpp"
 #include "context.hpp"
 #include "dfc/protocol/monitor_units.hpp"
+#include "dfc/protocol/progress_monitors.hpp"
 #include "expectations.hpp"
 #include "requests.hpp"
 
@@ -189,6 +191,29 @@ void declared_units_cover_monitors(Context& context) {
   expect(missing.empty(), "configured.info.monitor_units gives no unit string for the monitor(s) " + names);
 }
 
+// SPEC.md §4.2 (1.5): info.progress_monitors, when present, is well formed and
+// names number monitors that are declared and sent after a step.
+void progress_monitors_are_declared_and_sent(Context& context) {
+  std::vector<protocol::ProgressMonitor> entries;
+  try {
+    entries = protocol::parse_progress_monitors(context.configured_info);
+  } catch (const std::invalid_argument& e) {
+    expect(false, std::string("configured.") + e.what());
+  }
+  if (entries.empty()) throw NotApplicable("configured.info lists no progress_monitors (optional)");
+  const protocol::Message reply = context.request(protocol::type::query);
+  expect_type(reply, protocol::type::monitors);
+  const nlohmann::json monitors = reply.body.value("monitors", nlohmann::json::object());
+  for (const protocol::ProgressMonitor& entry : entries) {
+    expect(context.monitor_units.is_null() || (context.monitor_units.contains(entry.monitor) && context.monitor_units[entry.monitor].is_string()),
+           "progress monitor '" + entry.monitor + "' has no unit in configured.info.monitor_units");
+    const auto value = monitors.find(entry.monitor);
+    expect(value != monitors.end() && (value->is_number() || value->is_null()),
+           "progress monitor '" + entry.monitor + "' is not a number monitor of the query after a step" +
+               (value == monitors.end() ? std::string(" (missing)") : ", got " + value->dump().substr(0, 80)));
+  }
+}
+
 void expect_index_rows(const protocol::Array& indices, std::int64_t rows) {
   const auto values = indices.to_i64();
   expect(std::all_of(values.begin(), values.end(), [rows](std::int64_t v) { return v >= 0 && v < rows; }),
@@ -266,6 +291,8 @@ std::vector<Check> advance_checks() {
       {"running.query", "query gets monitors at the current step", M::configured, M::none, true, query_reports_step_and_monitors},
       {"running.monitor_units", "configure's info.monitor_units gives the unit of every monitor sent after a step", M::stepped, M::none,
        true, declared_units_cover_monitors},
+      {"running.progress_monitors", "configure's info.progress_monitors, if any, is well formed and names number monitors sent (1.5)",
+       M::stepped, M::none, true, progress_monitors_are_declared_and_sent},
       {"running.snapshot", "snapshot gets snapshot_data with a kind and its arrays (snapshot capability), else UNSUPPORTED",
        M::configured, M::none, true, snapshot_matches_capability},
       {"running.get_interface_refused", "get_interface after advancing gets OUT_OF_ORDER", M::stepped, M::none, true,

@@ -72,6 +72,7 @@ void configure_is_accepted_with_hash(Context& context) {
   expect(info.contains("dt_max") && (info["dt_max"].is_null() || positive_number(info["dt_max"])),
          "configured.info.dt_max must be a positive number or null, got " + info.value("dt_max", nlohmann::json()).dump());
   narrow_capabilities(context, info);
+  context.configured_info = info;
   context.monitor_units = info.value(protocol::monitor_units_key, nlohmann::json());
   expect(context.monitor_units.is_null() || context.monitor_units.is_object(),
          "configured.info.monitor_units must be an object {monitor: unit}, got " + context.monitor_units.dump().substr(0, 200));

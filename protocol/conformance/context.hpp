@@ -64,6 +64,7 @@ class Context {
   std::optional<double> dt_max;          ///< s; configured.info.dt_max when a number
   std::int64_t step = 0;                 ///< the server's step as the checks know it
   nlohmann::json monitor_units;          ///< configured.info.monitor_units; null when the server declared none
+  nlohmann::json configured_info;        ///< configured.info as received
   /// Rows of the interface arrays, once known: the mesh the server provided
   /// (get_interface) and the test mesh it accepted (set_interface).
   std::optional<std::int64_t> provided_nodes;

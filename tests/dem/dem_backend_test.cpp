@@ -1,8 +1,12 @@
 // DemBackend: the protocol face of the DEM (SPEC.md §6).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/dem_backend.hpp"
+#include "dfc/protocol/monitor_units.hpp"
+#include "dfc/protocol/progress_monitors.hpp"
 #include "dem_test_support.hpp"
 
 namespace dfc::dem {
@@ -162,6 +166,44 @@ TEST(DemBackend, NoGeneratedSphereIsTrappedInsideThePile) {
     if (z < 0.004) ++below_tip;
   }
   EXPECT_GT(position.size() / 3, below_tip) << "spheres outside the pile must remain";
+}
+
+}  // namespace
+}  // namespace dfc::dem
+
+namespace dfc::dem {
+namespace {
+
+// The pile's peak force is the DEM's own monitor (SPEC.md §6.3, 1.5): the
+// largest advance-averaged pile_force_n so far, kept by a checkpoint; and
+// configure lists the pile's progress monitors for the coupler (§4.2).
+TEST(DemBackend, PilePeakForceIsTheLargestAdvanceForceAndSurvivesACheckpoint) {
+  nlohmann::json config = bed_on_interface();
+  config["walls"] = {{{"type", "plane"}, {"point_m", {0, 0, 0}}, {"normal", {0, 0, 1}}}};
+  config["pile"] = {{"radius_m", 0.005}, {"tip_z_m", 0.0245}, {"length_m", 0.05}, {"velocity_m_s", {0, 0, -0.5}}};
+  DemBackend backend;
+  const nlohmann::json info = backend.configure(config);
+  const auto progress = protocol::parse_progress_monitors(info);
+  ASSERT_EQ(progress.size(), 3u);
+  EXPECT_EQ(progress[0].monitor, "pile_displacement_m");
+  EXPECT_EQ(progress[2].monitor, "pile_peak_force_n");
+  EXPECT_TRUE(info[protocol::monitor_units_key].contains("pile_peak_force_n"));
+  const double dt = info["dt_suggested"];
+  double largest = -1e300;
+  double last = 0.0;
+  for (int k = 0; k < 30; ++k) {
+    const protocol::AdvanceResult r = backend.advance(request(100, dt, {}));
+    last = r.monitors["pile_force_n"].get<double>();
+    largest = std::max(largest, last);
+    EXPECT_EQ(r.monitors["pile_peak_force_n"].get<double>(), largest) << "advance " << k;
+  }
+  ASSERT_GT(largest, 0.0) << "the pile never touched the bed: the test would prove nothing";
+  ASSERT_LT(last, largest) << "the force still rises at the end: a restored peak could not be told from the last force";
+  const std::string state = backend.checkpoint_state();
+  DemBackend resumed;
+  (void)resumed.configure(config);
+  resumed.restore_state(state);
+  EXPECT_EQ(resumed.monitors()["pile_peak_force_n"].get<double>(), largest);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/monitor_units.hpp"
+#include "dfc/protocol/progress_monitors.hpp"
 
 namespace dfc::protocol::testing {
 
@@ -27,6 +28,7 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "no-force-monitor") return Breakage::no_force_monitor;
   if (name == "nan-velocity") return Breakage::nan_velocity;
   if (name == "huge-particle-count") return Breakage::huge_particle_count;
+  if (name == "unsent-progress-monitor") return Breakage::unsent_progress_monitor;
   return std::nullopt;
 }
 
@@ -56,7 +58,13 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
   if (breakage_ == Breakage::huge_particle_count) monitors_ = {{"particle_count", 2e10}};
   nlohmann::json units = shared_monitor_units();
   units["particle_count"] = unit::dimensionless;  // sent by the huge_particle_count breakage only
-  return {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}};
+  // What the coupler shows while a run goes (SPEC.md §4.2, 1.5): the interface's kinetic energy, in mJ.
+  std::vector<ProgressMonitor> progress = {{"kinetic_energy_j", "energy", 1e3, "mJ"}};
+  if (breakage_ == Breakage::unsent_progress_monitor) {
+    progress.push_back({"fixture_never_sent", "never", 1.0, "1"});
+    units["fixture_never_sent"] = unit::dimensionless;
+  }
+  return {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}, {progress_monitors_key, to_json(progress)}};
 }
 
 AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
@@ -68,7 +76,8 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::wrong_output_shape:
     case Breakage::no_force_monitor:
     case Breakage::nan_velocity:
-    case Breakage::huge_particle_count: break;
+    case Breakage::huge_particle_count:
+    case Breakage::unsent_progress_monitor: break;
   }
   if (request.dt > kDtMax) throw UnstableStepError("dt exceeds the fixture's stability limit", kDtMax);  // before anything changes
   const std::int64_t n = mesh_.node_count();

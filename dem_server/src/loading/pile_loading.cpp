@@ -1,7 +1,9 @@
 // The pile jacked into the particles (foundation_loading.hpp): its start rule
 // and velocity ramp, the split of its force into tip and shaft (an open
 // tube's annulus, inner and outer shaft) and the soil column in its bore.
+#include <cmath>
 #include <iostream>
+#include <limits>
 
 #include "dfc/common/unit_names.hpp"
 #include "dfc/dem/foundation_loading.hpp"
@@ -65,6 +67,7 @@ class PileLoading final : public LoadingProtocol {
     const double total = -dot(inv_n * sums.wall_force[wall_], direction());
     const double tip = -dot(inv_n * tip_sum_, direction());
     out["pile_force_n"] = total;
+    if (!(total <= peak_force_)) peak_force_ = total;  // NaN-safe: a first finite value replaces the initial NaN
     out["pile_tip_force_n"] = tip;
     out["pile_shaft_force_n"] = total - tip;
     if (!inner_.empty()) {  // an open tube: each shaft from its own facets (their sum is tested against the total)
@@ -77,6 +80,7 @@ class PileLoading final : public LoadingProtocol {
   void monitors(const Simulation& s, nlohmann::json& out) const override {
     const Vec3 moved = s.walls()[wall_].vertices.front() - reference_;
     out["pile_displacement_m"] = dot(moved, direction());
+    out["pile_peak_force_n"] = std::isfinite(peak_force_) ? peak_force_ : 0.0;
     for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
       if (!out.contains(force)) out[force] = 0.0;
     if (inner_.empty()) return;
@@ -87,14 +91,22 @@ class PileLoading final : public LoadingProtocol {
     out["pile_plug_particles"] = plug.particles;
   }
 
-  // Whether the pile still waits for pile.start_when, and the step it started at.
+  void progress_monitors(nlohmann::json& out) const override {
+    out.push_back({{"monitor", "pile_displacement_m"}, {"label", "pile"}, {"scale", 1e3}, {"unit", "mm"}});
+    out.push_back({{"monitor", "pile_force_n"}, {"label", "force"}, {"scale", 1.0}, {"unit", "N"}});
+    out.push_back({{"monitor", "pile_peak_force_n"}, {"label", "peak"}, {"scale", 1.0}, {"unit", "N"}});
+  }
+
+  // Whether the pile still waits for pile.start_when, the step it started at, the peak force so far.
   void save_state(StateWriter& out) const override {
     out.value(waiting_);
     out.value(start_step_);
+    out.value(peak_force_);
   }
   void load_state(StateReader& in) override {
     in.value(waiting_);
     in.value(start_step_);
+    in.value(peak_force_);
   }
 
  private:
@@ -113,6 +125,7 @@ class PileLoading final : public LoadingProtocol {
   bool waiting_ = false;            ///< pile.start_when given and not yet met
   std::int64_t start_step_ = 0;     ///< first moving step (start_step, or when start_when was met)
   bool ramping_ = false;            ///< this advance sets the ramped velocity
+  double peak_force_ = std::numeric_limits<double>::quiet_NaN();  ///< N, largest advance-averaged pile force so far
   Vec3 tip_sum_, inner_sum_, outer_sum_;
 };
 
@@ -128,6 +141,7 @@ void declare_pile_monitors(nlohmann::json& units) {
   units["pile_plug_length_m"] = unit::metre;
   units["pile_plug_particles"] = unit::dimensionless;
   units["pile_displacement_m"] = unit::metre;
+  units["pile_peak_force_n"] = unit::newton;
 }
 
 }  // namespace dfc::dem

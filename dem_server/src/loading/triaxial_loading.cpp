@@ -75,6 +75,12 @@ class TriaxialLoading final : public LoadingProtocol {
     out["deviatoric_stress_pa"] = stress.deviator();
   }
 
+  void progress_monitors(nlohmann::json& out) const override {
+    out.push_back({{"monitor", "axial_strain"}, {"label", "axial strain"}, {"scale", 100.0}, {"unit", "%"}});
+    out.push_back({{"monitor", "deviatoric_stress_pa"}, {"label", "q"}, {"scale", 1e-3}, {"unit", "kPa"}});
+    out.push_back({{"monitor", "volumetric_strain"}, {"label", "volumetric strain"}, {"scale", 100.0}, {"unit", "%"}});
+  }
+
  private:
   TriaxialConfig config_;
   RadiusExpansionSpec expansion_;  ///< a radius expansion inside the walls (the particles' spec)

@@ -73,6 +73,11 @@ class UcsLoading final : public LoadingProtocol {
     if (!out.contains("axial_stress_pa")) out["axial_stress_pa"] = axial_stress(axis_, top.force, bottom.force, area_);
   }
 
+  void progress_monitors(nlohmann::json& out) const override {
+    out.push_back({{"monitor", "axial_strain"}, {"label", "axial strain"}, {"scale", 100.0}, {"unit", "%"}});
+    out.push_back({{"monitor", "axial_stress_pa"}, {"label", "stress"}, {"scale", 1e-3}, {"unit", "kPa"}});
+  }
+
  private:
   UcsConfig config_;
   BedRegion region_;     ///< the lattice bed's region (derived area)

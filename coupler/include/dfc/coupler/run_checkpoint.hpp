@@ -29,7 +29,6 @@ namespace dfc::coupler {
 /// in a checkpoint, so a resumed loop continues bit for bit.
 struct LoopState {
   CouplingState coupling;  ///< the coupling scheme's (coupling_scheme.hpp): exchange index, steps, interface kinematics, force balance
-  double peak_pile_force = std::numeric_limits<double>::quiet_NaN();
   double wall_time_s = 0.0;  ///< s, wall time the exchanges done took (across resumed processes)
   std::map<std::string, nlohmann::json> monitors;  ///< per slot, of the last exchange
 };

@@ -15,6 +15,7 @@
 //   pile_displacement_m        pile travel along its velocity direction (positive = penetration)
 //   pile_force_n               force of the particles on the pile along -velocity direction
 //                              (positive = resisting penetration), averaged over the advance
+//   pile_peak_force_n          the largest pile_force_n of any advance so far (kept in a checkpoint)
 //   pile_tip_force_n, pile_shaft_force_n  its part on the flat end's facets and on the others
 //   pile_inner_shaft_force_n, pile_outer_shaft_force_n  an open tube's (pile.wall_thickness_m) shaft
 //                              parts, each from its facets (the tip is then the annulus)

@@ -16,6 +16,8 @@
 //             protocol replaces Simulation::step with a servo-controlled step),
 //             after_step; end_advance after the steps; averages over the advance
 //   monitors  its instantaneous monitors at the end of an advance
+//   progress  the few of them the coupler shows while the run goes and at its
+//             end (SPEC.md §4.2, configure's info.progress_monitors)
 //   state     what a checkpoint must keep of it (the rest follows from the section)
 #include <cstdint>
 #include <memory>
@@ -87,6 +89,11 @@ class LoadingProtocol {
     (void)simulation;
     (void)out;
   }
+
+  /// Appends to `out` (a JSON array) the monitors the coupler shows on its
+  /// progress line and in its summary, as SPEC.md §4.2's info.progress_monitors
+  /// entries {monitor, label, scale, unit}.
+  virtual void progress_monitors(nlohmann::json& out) const { (void)out; }
 
   virtual void save_state(StateWriter& out) const { (void)out; }
   virtual void load_state(StateReader& in) { (void)in; }
