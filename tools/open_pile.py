@@ -284,6 +284,7 @@ def analyse(run, out, figures):
     tip = run.surface_z - float(np.max(run.h))
     d, ro, ri = run.diameter, 0.5 * run.diameter, run.inner_radius
     near_tip = (tip - 0.25 * d, tip + 0.25 * d)
+    within_1d = (tip - d, min(tip + d, run.surface_z))
     result = {
         "sigma_rr_pa_at_tip": {"outside_next_to_wall": ring_mean(sigma_rr, r_edges, z_edges, (ro, ro + 0.125 * d), near_tip),
                                "outside_1D_out": ring_mean(sigma_rr, r_edges, z_edges, (ro + 0.75 * d, ro + d), near_tip),
@@ -295,6 +296,10 @@ def analyse(run, out, figures):
         # The same radius on both sides: the DEM's outer ring (its cells' centres lie D/16 and 3D/16 inside
         # the wall) against the FDM extrapolated inwards to the ring's middle.
         "fdm_sigma_rr_pa_extrapolated_to_core_edge_ring": fdm_extrapolated(fdm, r_edges[-1] - 0.125 * d, near_tip),
+        # The same rings over the band within 1 D of the tip's depth (cut at the surface): about 90 of the DEM's
+        # coarse grains instead of 30, so that the DEM's ring average is representative (docs/open_pile.md §4).
+        "dem_sigma_rr_pa_core_edge_within_1D": ring_mean(sigma_rr, r_edges, z_edges, (r_edges[-1] - 0.25 * d, r_edges[-1]), within_1d),
+        "fdm_sigma_rr_pa_next_to_core_within_1D": ring_mean(fdm[2], fdm[0], fdm[1], (r_edges[-1], r_edges[-1] + 0.25 * d), within_1d),
     }
     if figures:
         plot_section(run, out, "fig2b_radial_stress.png", r_edges, z_edges, sigma_rr,
