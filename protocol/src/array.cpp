@@ -36,6 +36,9 @@ std::size_t dtype_size(DType dtype) noexcept {
 }
 
 std::int64_t Array::element_count() const noexcept {
+  // A zero extent first: decode() accepts an empty array of any other extents
+  // ([2^32, 2^31, 0] holds no bytes), whose running product would overflow.
+  if (std::find(shape.begin(), shape.end(), 0) != shape.end()) return 0;
   std::int64_t count = 1;
   for (const auto extent : shape) count *= extent;
   return count;

@@ -17,7 +17,12 @@ std::string encode_header(const Message& message) {
   for (const auto& array : message.arrays)
     descriptors.push_back({{"name", array.name}, {"dtype", dtype_name(array.dtype)}, {"shape", array.shape}});
   header["arrays"] = std::move(descriptors);
-  return header.dump();
+  // Frame 0 is UTF-8 (SPEC.md §3), and a string that is not must not stop a
+  // reply from being sent: error texts quote the request's bytes (the JSON
+  // parser's "last read: ..." of a header that is not UTF-8, a value cut to
+  // 40 bytes inside a character), and nlohmann's default is to throw, which
+  // ended the server. Invalid bytes are sent as U+FFFD instead.
+  return header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 namespace {
