@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The libFuzzer harnesses of fuzz/ (docs/verification.md, "Fuzzing"), run long:
+# The libFuzzer harnesses of fuzz/ (docs/fuzzing.md), run long:
 # configures a clang build folder with DFC_FUZZ=ON (RelWithDebInfo, AddressSanitizer
 # and UBSan), builds the two fuzzers and nothing of the solvers, then runs each
 # for RUNS executions on its seed corpus (fuzz/corpus/protocol, fuzz/corpus/scenario: only read; new

@@ -12,6 +12,7 @@
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 #include "dfc/protocol/progress_monitors.hpp"
+#include "square_grid_mesh.hpp"
 
 namespace dfc::protocol::testing {
 
@@ -41,18 +42,7 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
   const std::int64_t side = config.integer("side", 2, 2);
   (void)config.vec3("gravity_m_s2", {0.0, 0.0, 0.0});  // added by the coupler to every section (SPEC.md §4.2); unused here
   config.finish();
-  mesh_ = {};
-  for (std::int64_t j = 0; j < side; ++j)
-    for (std::int64_t i = 0; i < side; ++i) {
-      mesh_.node_ids.push_back(1000 + j * side + i);
-      mesh_.coordinates.insert(mesh_.coordinates.end(), {double(i), double(j), 0.0});
-    }
-  for (std::int64_t j = 0; j + 1 < side; ++j)
-    for (std::int64_t i = 0; i + 1 < side; ++i) {
-      const std::int64_t a = j * side + i;
-      // Two triangles per cell, counter-clockwise seen from +z: normals point up, out of the body below.
-      mesh_.facets.insert(mesh_.facets.end(), {a, a + 1, a + side + 1, a, a + side + 1, a + side});
-    }
+  mesh_ = square_grid_mesh(side);
   velocity_.assign(mesh_.coordinates.size(), 0.0);
   displacement_.assign(mesh_.coordinates.size(), 0.0);
   if (breakage_ == Breakage::huge_particle_count) monitors_ = {{"particle_count", 2e10}};
