@@ -111,7 +111,9 @@ int run_command(int argc, char** argv) {
     if (const auto problem = dfc::coupler::output_directory_problem(options.output_directory, scenario_path))
       throw dfc::UserError("--out " + *problem);
 
-  const auto scenarios = dfc::coupler::load_scenarios(scenario_path, own_bin_dir());
+  // Resuming reads the run's own record (DIR/scenario.json unless a copy is given).
+  const auto scenarios = dfc::coupler::load_scenarios(
+      scenario_path, own_bin_dir(), options.resume ? dfc::coupler::ScenarioFileRole::run_record : dfc::coupler::ScenarioFileRole::input);
   const bool variants = !scenarios.front().variant_label.empty();
   if (options.resume && variants)
     throw dfc::UserError("--resume continues one run; '" + scenario_path.string() + "' has variants: resume each variant's folder (DIR/<label>)");

@@ -137,7 +137,7 @@ std::optional<std::string> output_directory_problem(const fs::path& directory, c
   return std::nullopt;
 }
 
-std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_dir) {
+std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_dir, ScenarioFileRole role) {
   const auto load = [](const fs::path& file) {
     try {
       return parse_json_text(read_scenario_text(file), JsonTextLimits{.reject_duplicate_keys = true});
@@ -150,7 +150,7 @@ std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_d
   std::vector<Scenario> scenarios;
   for (const ScenarioVariant& variant : expand_variants(document)) {
     try {
-      scenarios.push_back(parse_scenario(variant.document, path, bin_dir));
+      scenarios.push_back(parse_scenario(variant.document, path, bin_dir, role));
       scenarios.back().variant_label = variant.label;
     } catch (const ConfigError& e) {
       if (variant.label.empty()) throw;
@@ -160,7 +160,7 @@ std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_d
   return scenarios;
 }
 
-Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, const fs::path& bin_dir) {
+Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, const fs::path& bin_dir, ScenarioFileRole role) {
   Scenario scenario;
   scenario.document = document;
   scenario.source = source;
@@ -238,7 +238,9 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   scenario.output_directory = fs::path("results") / scenario.name;
   if (auto output = root.optional_child("output")) {
     scenario.output_directory = output->string("directory", scenario.output_directory.string());
-    if (const auto problem = output_directory_problem(scenario.output_directory, source)) output->fail("directory", *problem);
+    // A run record lives in the folder it names (that is where --resume reads it).
+    const fs::path inputs = role == ScenarioFileRole::input ? source : fs::path();
+    if (const auto problem = output_directory_problem(scenario.output_directory, inputs)) output->fail("directory", *problem);
     output->finish();
   }
   root.finish();

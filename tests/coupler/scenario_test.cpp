@@ -157,6 +157,8 @@ TEST(Scenario, NamesAndOutputFoldersThatWouldOverwriteInputsAreRefused) {
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key_path(), "output.directory");
   }
+  // A run's own record (DIR/scenario.json, read by --resume) names its folder by design.
+  EXPECT_NO_THROW((void)parse_scenario(d, inputs / "scenario.json", "", ScenarioFileRole::run_record));
   d["output"] = {{"directory", "results/mine"}};
   EXPECT_EQ(error_key(d), "(no error)");
 }

@@ -75,13 +75,16 @@ TEST(ExactRestart, KilledAfterCheckpointAndResumedGivesTheSameBits) {
   ASSERT_EQ(uninterrupted.exit_status, 0) << uninterrupted.output;
 
   // 2. The same run with a checkpoint at exchange 100, killed (SIGKILL, all processes) once it is written.
+  // Its folder is named by output.directory (not --out), so the run's record
+  // DIR/scenario.json names its own folder: resuming from it must be accepted.
+  const fs::path run = dir / "killed";
   auto scenario = nlohmann::json::parse(read_text(scenario_file));
   scenario["run"]["checkpoint_every"] = kCheckpointAt;
+  scenario["output"]["directory"] = run.string();
   const fs::path checkpointed_file = dir / "checkpointed.json";
   std::ofstream(checkpointed_file) << scenario.dump(2);
-  const fs::path run = dir / "killed";
   const fs::path log = dir / "killed.log";
-  const pid_t coupler_pid = start_command({coupler(), "run", checkpointed_file.string(), "--out", run.string(), "--no-progress"}, log);
+  const pid_t coupler_pid = start_command({coupler(), "run", checkpointed_file.string(), "--no-progress"}, log);
   const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(3);
   while (!fs::exists(run / "checkpoint/coupler.checkpoint") && std::chrono::steady_clock::now() < until) ::usleep(2'000);
   ASSERT_TRUE(fs::exists(run / "checkpoint/coupler.checkpoint")) << read_text(log);

@@ -77,12 +77,19 @@ struct Scenario {
   [[nodiscard]] const ParticipantSpec* participant(std::string_view slot) const;
 };
 
+/// What a scenario file is: the user's input, or the copy a run keeps in its
+/// results folder (DIR/scenario.json, read by `coupler run --resume DIR`).
+/// A record names its own folder as output.directory by design, so the check
+/// that the results do not overwrite the inputs' folder does not apply to it.
+enum class ScenarioFileRole { input, run_record };
+
 /// Reads and validates `path`: one run, or one per entry of "variants"
 /// (scenario_variants.hpp), in order. `bin_dir` is where the project's
 /// executables are (bare program names are looked up there first, then on
 /// PATH). Throws dfc::ConfigError (key path + reason; a variant's error names
 /// its label) or dfc::UserError.
-[[nodiscard]] std::vector<Scenario> load_scenarios(const std::filesystem::path& path, const std::filesystem::path& bin_dir);
+[[nodiscard]] std::vector<Scenario> load_scenarios(const std::filesystem::path& path, const std::filesystem::path& bin_dir,
+                                                   ScenarioFileRole role = ScenarioFileRole::input);
 
 /// True for a name that can be one folder of a path: not empty, no '/', not
 /// "." or ".." (scenario names and variant labels name results folders).
@@ -95,6 +102,7 @@ struct Scenario {
                                                                   const std::filesystem::path& scenario_source);
 
 /// Same, from an already-parsed document.
-[[nodiscard]] Scenario parse_scenario(const nlohmann::json& document, const std::filesystem::path& source, const std::filesystem::path& bin_dir);
+[[nodiscard]] Scenario parse_scenario(const nlohmann::json& document, const std::filesystem::path& source, const std::filesystem::path& bin_dir,
+                                      ScenarioFileRole role = ScenarioFileRole::input);
 
 }  // namespace dfc::coupler
