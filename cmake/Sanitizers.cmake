@@ -1,0 +1,27 @@
+# DFC_SANITIZE: AddressSanitizer + UndefinedBehaviorSanitizer on every target
+# of the project (libraries, servers, coupler, tests), for `./vc test --sanitize`
+# (build folder build-sanitize; docs/fuzzing.md, "Sanitizer build").
+#
+# Set for the whole directory tree, before any target is added, rather than
+# through an interface library: a target that forgot to link one would run
+# uninstrumented, and the e2e tests start the real server executables, whose
+# memory errors are the ones a coupled run would hit.
+#
+# -fno-sanitize-recover=all: a UBSan report ends the process with an error,
+# so the test that reached it fails instead of printing a line nobody reads.
+# float-cast-overflow is undefined behaviour (a double out of the integer's
+# range, NaN included, converted to an integer) that g++'s "undefined" group
+# leaves out. float-divide-by-zero stays off: IEEE 754 defines it (inf, NaN),
+# and the solvers rely on that.
+# Not together with DFC_FUZZ: the fuzz build instruments its own targets
+# with clang's fuzzer runtime (fuzz/CMakeLists.txt).
+option(DFC_SANITIZE "Build every target with AddressSanitizer and UBSan (./vc test --sanitize)" OFF)
+if(DFC_SANITIZE)
+  if(DFC_FUZZ)
+    message(FATAL_ERROR "DFC_SANITIZE and DFC_FUZZ are separate builds: the fuzz build already uses AddressSanitizer and UBSan.")
+  endif()
+  set(DFC_SANITIZER_FLAGS -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  add_compile_options(${DFC_SANITIZER_FLAGS})
+  add_link_options(${DFC_SANITIZER_FLAGS})
+  message(STATUS "DFC_SANITIZE: every target built with ${DFC_SANITIZER_FLAGS}")
+endif()
