@@ -148,10 +148,22 @@ int run_command(int argc, char** argv) {
   return 0;
 }
 
+/// The servers' OpenMP threads idle between advances while the coupler and
+/// the other server work. libgomp's default lets them spin there for up to
+/// 300 000 iterations, which takes the cores the others need: with a two-core
+/// job beside it, the demo pile's exchange took 19 ms spinning against 5 ms
+/// sleeping (bench/exchange_overhead.sh, docs/exchange_cost.md). Sleeping costs
+/// ~10-20 % on an idle machine. Set before any thread or server starts; a
+/// user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept.
+void let_idle_server_threads_sleep() {
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr) ::setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
+    let_idle_server_threads_sleep();
     return run_command(argc, argv);
   } catch (const dfc::ConfigError& e) {
     std::cerr << "coupler: scenario error at " << (e.key_path().empty() ? "(top level)" : e.key_path()) << ": " << e.reason() << "\n";

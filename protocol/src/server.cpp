@@ -1,5 +1,6 @@
 #include "dfc/protocol/server.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -66,6 +67,18 @@ std::optional<int> parse_options(int argc, char** argv, const ServerProgram& pro
   return std::nullopt;
 }
 
+/// One line in the server's log at `shutdown`: the solver's share of the
+/// advances and what handling the messages around them cost (decoding,
+/// checks, encoding, sending), which bench/exchange_overhead.sh reads.
+void print_advance_statistics(std::string_view name, const AdvanceStatistics& statistics, double service_seconds) {
+  if (statistics.advances == 0) return;
+  const double per_advance_us = 1e6 / static_cast<double>(statistics.advances);
+  const double handling_s = std::max(0.0, service_seconds - statistics.solver_seconds);
+  std::cerr << name << ": " << statistics.advances << " advances (" << statistics.steps << " steps): solver " << statistics.solver_seconds
+            << " s (" << statistics.solver_seconds * per_advance_us << " us per advance), message handling " << handling_s << " s ("
+            << handling_s * per_advance_us << " us per advance)\n";
+}
+
 int serve(const ServerProgram& program, const ServerOptions& options) {
   const auto backend = program.make_backend();
   ServerSession session(*backend, options.limits);
@@ -77,6 +90,7 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
 
   const auto poll_slice = std::chrono::milliseconds(500);
   auto last_message = std::chrono::steady_clock::now();
+  double advance_service_seconds = 0.0;  // from an advance request received to its reply sent
   while (!session.closed()) {
     auto frames = receive_frames(socket, poll_slice);
     if (!frames) {
@@ -92,13 +106,17 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
     const zmq::message_t& routing_id = frames->front();
     const auto views = frame_views(*frames, 1);
     Message reply;
+    const std::int64_t advances_before = session.advance_statistics().advances;
     try {
       reply = session.handle(decode(views, options.limits));
     } catch (const DecodeError& e) {
       reply = session.refuse_undecodable(e);
     }
     send_message(socket, reply, &routing_id);
+    if (session.advance_statistics().advances != advances_before)
+      advance_service_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - last_message).count();
   }
+  print_advance_statistics(program.name, session.advance_statistics(), advance_service_seconds);
   // The sockets drop unsent messages on close (ZMQ_LINGER 0, so that no abort
   // path blocks); after `shutdown` give `bye` up to a second to leave (SPEC.md §2).
   socket.set(zmq::sockopt::linger, 1000);

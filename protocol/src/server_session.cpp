@@ -1,6 +1,7 @@
 #include "dfc/protocol/server_session.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "dfc/common/errors.hpp"
@@ -201,7 +202,11 @@ Message ServerSession::on_advance(const Message& request) {
   if (dt == request.body.end() || !dt->is_number() || !(dt->get<double>() > 0.0) || !std::isfinite(dt->get<double>()))
     throw ProtocolError(ErrorCode::bad_message, "advance needs body.dt, a positive finite number of seconds");
   AdvanceRequest advance{step_, n->get<std::int64_t>(), dt->get<double>(), request.arrays};
+  const auto solver_start = std::chrono::steady_clock::now();
   AdvanceResult result = backend_.advance(advance);
+  advance_statistics_.solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();
+  advance_statistics_.advances += 1;
+  advance_statistics_.steps += advance.n_steps;
   step_ += advance.n_steps;
   state_ = SessionState::running;
   Message reply = reply_to(request, type::advanced);

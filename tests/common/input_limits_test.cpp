@@ -39,6 +39,22 @@ TEST(JsonText, NestingAtTheLimitIsAccepted) {
   EXPECT_EQ(parse_error_of("[" + at_limit + "]").kind(), JsonTextError::Kind::too_deep);
 }
 
+TEST(JsonText, DepthIsCountedOutsideStringsOnly) {
+  // parse_json_text measures the depth before parsing (its fast path): brackets
+  // inside strings do not nest, and an escaped quote or backslash must not make
+  // the count lose track of where a string ends.
+  const std::string brackets_in_a_string = R"({"note": ")" + std::string(1000, '[') + R"("})";
+  EXPECT_NO_THROW((void)parse_json_text(brackets_in_a_string));
+  const std::string too_deep = std::string(kMaxJsonNesting, '[') + std::string(kMaxJsonNesting, ']');
+  for (const std::string& string_before : {std::string(R"("\\")"), std::string(R"("\"[")"), std::string(R"("a\\\"]]]")")}) {
+    const std::string text = "[" + string_before + ", " + too_deep + "]";
+    EXPECT_EQ(parse_error_of(text).kind(), JsonTextError::Kind::too_deep) << text.substr(0, 40);
+  }
+  // Unbalanced closing brackets, or a string never closed, are syntax errors named as such.
+  EXPECT_EQ(parse_error_of("]]]" + too_deep).kind(), JsonTextError::Kind::syntax);
+  EXPECT_EQ(parse_error_of(R"(["unclosed)").kind(), JsonTextError::Kind::syntax);
+}
+
 TEST(JsonText, DuplicateKeysAreRefusedWithTheKeyPathWhenAsked) {
   const std::string text = R"({"run": {"exchanges": 1}, "list": [{}, {"a": 1, "b": {"c": 1, "c": 2}}]})";
   const JsonTextError error = parse_error_of(text, JsonTextLimits{.reject_duplicate_keys = true});

@@ -17,6 +17,14 @@
 namespace dfc::protocol {
 
 enum class SessionState { fresh, greeted, configured, running, failed, closed };
+
+/// What the solver's own advancing cost, so that the time of an exchange can
+/// be split into the solvers' work and the coupling's (bench/exchange_overhead.sh).
+struct AdvanceStatistics {
+  std::int64_t advances = 0;    ///< successful advance requests
+  std::int64_t steps = 0;       ///< solver steps they took
+  double solver_seconds = 0.0;  ///< wall time inside SolverBackend::advance
+};
 [[nodiscard]] std::string_view session_state_name(SessionState state) noexcept;
 
 class ServerSession {
@@ -33,6 +41,7 @@ class ServerSession {
   [[nodiscard]] SessionState state() const noexcept { return state_; }
   [[nodiscard]] std::int64_t step() const noexcept { return step_; }
   [[nodiscard]] bool closed() const noexcept { return state_ == SessionState::closed; }
+  [[nodiscard]] const AdvanceStatistics& advance_statistics() const noexcept { return advance_statistics_; }
 
  private:
   Message dispatch(const Message& request);
@@ -56,6 +65,7 @@ class ServerSession {
   std::int64_t step_ = 0;
   std::int64_t next_seq_ = 0;
   std::string section_hash_;  ///< configured.scenario_hash, stamped on checkpoints
+  AdvanceStatistics advance_statistics_;
 };
 
 }  // namespace dfc::protocol
