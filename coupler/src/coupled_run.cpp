@@ -517,6 +517,7 @@ void check_scenario(const Scenario& scenario, std::ostream& log) {
   std::vector<std::unique_ptr<Participant>> participants;
   try {
     participants = start_participants(context, scenario, log_dir, never);
+    (void)progress_monitors(participants);  // a run would refuse a malformed list: so does check
     const auto [dem, continuum] = by_slot(participants);
     const ExchangeTiming timing = choose_timing(scenario, dem, continuum);
     for (auto& p : participants)
@@ -567,6 +568,8 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
   try {
     // Steps 1–2: start, greet, configure.
     participants = start_participants(context, scenario, log_dir, stop);
+    // Read at once: a server's malformed list fails the run before any results file exists.
+    ProgressMonitors shown_progress = progress_monitors(participants);
     const auto [dem, continuum] = by_slot(participants);
     if (resumed) check_can_resume(*resumed, scenario, participants);
     const milliseconds deadline = milliseconds_from_seconds(scenario.run.deadline_s);
@@ -594,7 +597,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
       scheme.import_state(loop.coupling);
     }
     StartedRun run{scenario, options, participants, stop, deadline, *writer, recorder, checkpoints, solver_names(participants),
-                   progress_monitors(participants), every_can_checkpoint(participants)};
+                   std::move(shown_progress), every_can_checkpoint(participants)};
     ExchangeLoop exchanges(run, scheme, loop);
     const LoopOutcome outcome = exchanges.run();
 

@@ -127,6 +127,20 @@ TEST(ProbedDefects, ABedTooLargeToSnapshotIsRefusedAtCheckWithItsKey) {
       << result.output;
 }
 
+// A server's malformed info.progress_monitors (SPEC.md §4.2) is found by
+// `check`, and fails a run before it writes a results file.
+TEST(ProbedDefects, AMalformedProgressMonitorListFailsCheckAndTheRunBeforeAnyResult) {
+  const auto dir = fresh_directory("probe_malformed_progress");
+  const auto file = write_scenario(dir, fixture_alone("malformed_progress", "malformed-progress-monitors", 3));
+  const CommandResult checked = run_command({coupler(), "check", file.string()}, std::chrono::seconds(30));
+  EXPECT_EQ(checked.exit_status, 1) << checked.output;
+  EXPECT_NE(checked.output.find("info.progress_monitors must be an array"), std::string::npos) << checked.output;
+  const CommandResult ran = run_command({coupler(), "run", file.string(), "--out", (dir / "out").string(), "--no-progress"}, std::chrono::seconds(30));
+  EXPECT_EQ(ran.exit_status, 1) << ran.output;
+  EXPECT_NE(ran.output.find("info.progress_monitors must be an array"), std::string::npos) << ran.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/results.h5")) << ran.output;
+}
+
 // Item 13: failures went to stdout and stderr stayed empty.
 TEST(ProbedDefects, FailuresArePrintedOnStderr) {
   const auto dir = fresh_directory("probe_stderr");

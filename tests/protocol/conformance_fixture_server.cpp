@@ -1,6 +1,6 @@
 // conformance_fixture_server: a protocol v1 server around FixtureBackend,
 // for the tests of dfc_conformance and the coupler. `--break throw|shape|crash|hang|
-// no-force-monitor|nan-velocity|huge-particle-count|unsent-progress-monitor` makes it misbehave on purpose; every other option is the generic
+// no-force-monitor|nan-velocity|huge-particle-count|unsent-progress-monitor|malformed-progress-monitors` makes it misbehave on purpose; every other option is the generic
 // server's (--bind, --help, --version, ...).
 #include <cstring>
 #include <iostream>
@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--break") == 0 && i + 1 < argc) {
       const auto parsed = dfc::protocol::testing::breakage_from_name(argv[++i]);
       if (!parsed) {
-        std::cerr << "conformance_fixture_server: --break takes throw, shape, crash, hang, no-force-monitor, nan-velocity, huge-particle-count or unsent-progress-monitor, not '" << argv[i] << "'\n";
+        std::cerr << "conformance_fixture_server: --break takes throw, shape, crash, hang, no-force-monitor, nan-velocity, huge-particle-count, unsent-progress-monitor or malformed-progress-monitors, not '" << argv[i] << "'\n";
         return 2;
       }
       breakage = *parsed;

@@ -30,6 +30,7 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "nan-velocity") return Breakage::nan_velocity;
   if (name == "huge-particle-count") return Breakage::huge_particle_count;
   if (name == "unsent-progress-monitor") return Breakage::unsent_progress_monitor;
+  if (name == "malformed-progress-monitors") return Breakage::malformed_progress_monitors;
   return std::nullopt;
 }
 
@@ -54,7 +55,8 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
     progress.push_back({"fixture_never_sent", "never", 1.0, "1"});
     units["fixture_never_sent"] = unit::dimensionless;
   }
-  return {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}, {progress_monitors_key, to_json(progress)}};
+  const nlohmann::json listed = breakage_ == Breakage::malformed_progress_monitors ? nlohmann::json("kinetic_energy_j") : to_json(progress);
+  return {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}, {progress_monitors_key, listed}};
 }
 
 AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
@@ -67,7 +69,8 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::no_force_monitor:
     case Breakage::nan_velocity:
     case Breakage::huge_particle_count:
-    case Breakage::unsent_progress_monitor: break;
+    case Breakage::unsent_progress_monitor:
+    case Breakage::malformed_progress_monitors: break;
   }
   if (request.dt > kDtMax) throw UnstableStepError("dt exceeds the fixture's stability limit", kDtMax);  // before anything changes
   const std::int64_t n = mesh_.node_count();

@@ -20,10 +20,11 @@ enum class Breakage {
   no_force_monitor,    ///< advance omits the monitor interface_force_received
   nan_velocity,        ///< advance returns a NaN in its velocity
   huge_particle_count,  ///< monitors claim 2e10 particles, more than any snapshot could hold
-  unsent_progress_monitor  ///< configure lists a progress monitor the server never sends
+  unsent_progress_monitor,      ///< configure lists a progress monitor the server never sends
+  malformed_progress_monitors  ///< configure's info.progress_monitors is not an array
 };
 
-/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor"; nullopt for anything else.
+/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors"; nullopt for anything else.
 [[nodiscard]] std::optional<Breakage> breakage_from_name(std::string_view name) noexcept;
 
 class FixtureBackend final : public SolverBackend {
