@@ -175,6 +175,42 @@ def fdm_radial_stress(path):
     return r_edges, z_edges, np.where(count > 0, total / np.maximum(count, 1), np.nan)
 
 
+def wall_traction(path, radius):
+    """The radial traction on the coupling wall (compression positive), per layer of its
+    nodes, from the coupling forces on the FDM's nodes at its last snapshot
+    (node_external_force): the stress both bodies share at the wall, which each side's
+    zone or ring average approaches from its own side. (z, traction) sorted by z; None
+    when the snapshot has no coupling forces (a run of a build before they were written)."""
+    with h5py.File(path, "r") as f:
+        group = f["snapshots/continuum"]
+        snap = group[sorted(group)[-1]]
+        if "node_external_force" not in snap:
+            return None
+        nodes = snap["node_position"][()]
+        force = snap["node_external_force"][()]
+    r = np.hypot(nodes[:, 0], nodes[:, 1])
+    on_wall = np.abs(r - radius) < 1e-6 * radius
+    z = np.round(nodes[on_wall, 2], 9)
+    radial = (nodes[on_wall, 0] * force[on_wall, 0] + nodes[on_wall, 1] * force[on_wall, 1]) / r[on_wall]
+    layers = np.unique(z)
+    if len(layers) < 2:
+        return None
+    # Each layer of nodes carries the wall between the midpoints to its neighbours.
+    bounds = np.concatenate(([layers[0]], 0.5 * (layers[1:] + layers[:-1]), [layers[-1]]))
+    height = np.diff(bounds)
+    per_layer = np.array([radial[z == layer].sum() for layer in layers])
+    return layers, per_layer / (2.0 * np.pi * radius * height), height
+
+
+def band_mean(traction, z_range):
+    """The wall traction averaged over the layers in z_range, weighted by their heights."""
+    if traction is None:
+        return float("nan")
+    z, value, height = traction
+    pick = (z >= z_range[0]) & (z <= z_range[1])
+    return float(np.sum(value[pick] * height[pick]) / np.sum(height[pick])) if pick.any() else float("nan")
+
+
 def bond_damage_grid(path, r_edges, z_edges):
     """Mean bond damage D (broken = 1) and bond count per ring cell at the last DEM snapshot."""
     with h5py.File(path, "r") as f:
@@ -269,6 +305,7 @@ def analyse(run, out, figures):
     with h5py.File(run.path, "r") as f:
         sigma_rr = f["open_pile_grid/sigma_rr_pa"][-1]
     fdm = fdm_radial_stress(run.path)
+    traction = wall_traction(run.path, fdm[0][0])
     damage, bonds = bond_damage_grid(run.path, r_edges, z_edges)
     grid, length, plr, ifr = run.plug_ratios()
     with h5py.File(run.path, "r+") as f:
@@ -300,6 +337,10 @@ def analyse(run, out, figures):
         # coarse grains instead of 30, so that the DEM's ring average is representative (docs/open_pile.md §4).
         "dem_sigma_rr_pa_core_edge_within_1D": ring_mean(sigma_rr, r_edges, z_edges, (r_edges[-1] - 0.25 * d, r_edges[-1]), within_1d),
         "fdm_sigma_rr_pa_next_to_core_within_1D": ring_mean(fdm[2], fdm[0], fdm[1], (r_edges[-1], r_edges[-1] + 0.25 * d), within_1d),
+        # The stress at the wall itself, which both bodies share: the coupling forces on the wall's nodes
+        # per unit wall area, over the same bands. Each side's average above lies up to D/4 away from it.
+        "wall_traction_pa_at_tip": band_mean(traction, near_tip),
+        "wall_traction_pa_within_1D": band_mean(traction, within_1d),
     }
     if figures:
         plot_section(run, out, "fig2b_radial_stress.png", r_edges, z_edges, sigma_rr,

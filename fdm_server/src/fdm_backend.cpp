@@ -226,7 +226,7 @@ std::vector<protocol::Array> FdmBackend::snapshot(std::string& kind) {
   kind = "grid";
   std::vector<Stress> zone_stress(s.mesh().zone_count());
   for (Index z = 0; z < s.mesh().zone_count(); ++z) zone_stress[z] = s.zone_stress(z);
-  return grid_snapshot(s.mesh(), s.displacements(), s.velocities(), zone_stress);
+  return grid_snapshot(s.mesh(), s.displacements(), s.velocities(), zone_stress, s.external_forces());
 }
 
 }  // namespace dfc::fdm

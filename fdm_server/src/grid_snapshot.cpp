@@ -3,7 +3,7 @@
 namespace dfc::fdm {
 
 std::vector<protocol::Array> grid_snapshot(const Mesh& mesh, std::span<const Vec3> displacement, std::span<const Vec3> velocity,
-                                           std::span<const Stress> zone_stress) {
+                                           std::span<const Stress> zone_stress, std::span<const Vec3> external_force) {
   using protocol::Array;
   const auto n = std::int64_t(mesh.gridpoint_count());
   const auto m = std::int64_t(mesh.zone_count());
@@ -31,6 +31,7 @@ std::vector<protocol::Array> grid_snapshot(const Mesh& mesh, std::span<const Vec
   arrays.push_back(Array::from_f64("node_velocity", {n, 3}, flatten(velocity)));
   arrays.push_back(Array::from_i64("zone_nodes", {m, 8}, zone_nodes));
   arrays.push_back(Array::from_f64("zone_stress", {m, 6}, stress));
+  if (!external_force.empty()) arrays.push_back(Array::from_f64("node_external_force", {n, 3}, flatten(external_force)));
   return arrays;
 }
 

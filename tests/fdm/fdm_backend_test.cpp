@@ -173,6 +173,49 @@ TEST(FdmBackend, ProviderMonitorsReportReceivedForceAndPower) {
   EXPECT_TRUE(result.monitors.contains("kinetic_energy_j"));
 }
 
+TEST(FdmBackend, SnapshotCarriesTheCouplingForceOnEachInterfaceNode) {
+  // node_external_force: the force each interface node received, at that
+  // node's position, zero elsewhere; its sum is the monitor's.
+  FdmBackend backend;
+  backend.configure(box_section("provider", "zmax"));
+  const protocol::InterfaceMesh& mesh = backend.interface_mesh();
+  const std::int64_t n = mesh.node_count();
+  std::vector<double> force(std::size_t(3 * n));
+  for (std::size_t r = 0; r < std::size_t(n); ++r) {
+    force[3 * r] = 0.5 * double(r + 1);
+    force[3 * r + 1] = -0.25 * double(r);
+    force[3 * r + 2] = -2.0 - double(r);
+  }
+  const auto result = backend.advance(request(1, 1e-4, {Array::from_f64("force", {n, 3}, force)}));
+  std::string kind;
+  const std::vector<Array> arrays = backend.snapshot(kind);
+  const Array* external = protocol::find_array(arrays, "node_external_force");
+  ASSERT_NE(external, nullptr);
+  const auto positions = protocol::find_array(arrays, "node_position")->to_f64();
+  const auto values = external->to_f64();
+  ASSERT_EQ(values.size(), positions.size());
+  std::size_t loaded = 0;
+  Vec3 sum = Vec3::Zero();
+  for (std::size_t gp = 0; gp < values.size() / 3; ++gp) {
+    const Vec3 f(values[3 * gp], values[3 * gp + 1], values[3 * gp + 2]);
+    if (f.isZero(0.0)) continue;
+    ++loaded;
+    sum += f;
+    // The interface row with this gridpoint's position carries the same force.
+    bool matched = false;
+    for (std::size_t r = 0; r < std::size_t(n); ++r) {
+      const Vec3 at(mesh.coordinates[3 * r], mesh.coordinates[3 * r + 1], mesh.coordinates[3 * r + 2]);
+      if ((at - Vec3(positions[3 * gp], positions[3 * gp + 1], positions[3 * gp + 2])).norm() > 1e-12) continue;
+      matched = true;
+      EXPECT_EQ(f, Vec3(force[3 * r], force[3 * r + 1], force[3 * r + 2])) << "gridpoint " << gp;
+    }
+    EXPECT_TRUE(matched) << "a force on gridpoint " << gp << ", which is not on the interface";
+  }
+  EXPECT_EQ(loaded, std::size_t(n));
+  for (Eigen::Index c = 0; c < 3; ++c)
+    EXPECT_NEAR(sum[c], result.monitors["interface_force_received"][std::size_t(c)].get<double>(), 1e-12 * double(n * n));
+}
+
 TEST(FdmBackend, SnapshotUsesVtkHexahedronOrder) {
   FdmBackend backend;
   backend.configure(box_section("", ""));

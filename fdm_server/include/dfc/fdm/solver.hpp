@@ -102,6 +102,8 @@ class Solver {
   [[nodiscard]] std::span<const Tetrahedron> tetrahedra() const { return tetrahedra_; }
   [[nodiscard]] std::span<const Vec3> velocities() const { return velocity_; }
   [[nodiscard]] std::span<const Vec3> displacements() const { return displacement_; }
+  /// The forces set by set_external_force (the coupling's), N, per gridpoint.
+  [[nodiscard]] std::span<const Vec3> external_forces() const { return external_force_; }
   [[nodiscard]] std::span<const Stress> tetrahedron_stresses() const { return stress_; }
   /// The constitutive model's history of tetrahedron `tet` (model().state_names() order).
   [[nodiscard]] std::span<const double> tetrahedron_state(Index tet) const;
