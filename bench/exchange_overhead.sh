@@ -7,8 +7,11 @@
 # GOMP_SPINCOUNT=300000). For each run it prints the wall time per exchange,
 # the solvers' own time per advance (each server logs it at shutdown), the
 # overhead (exchange minus both solvers) and its ratio to two protocol round
-# trips measured by bench/zmq_round_trip (same message shapes, same machine,
-# same load). Each figure is the median of REPEATS runs.
+# trips measured by bench/zmq_round_trip on the same machine under the same
+# load: one whose server computes as long as the DEM did before it answers,
+# one as long as the FDM (an exchange's waits, in which the waiting process
+# sleeps and must be woken), and, on the header line, the back-to-back
+# ping-pong floor. Each figure is the median of REPEATS runs.
 #
 #   bench/exchange_overhead.sh [BUILD_DIR] [REPEATS]     (default ./build, 3; builds nothing)
 set -euo pipefail
@@ -61,9 +64,9 @@ def dem_monitor_count(path):
     subprocess.run([os.path.join(build, "bin/coupler"), "run", path, "--out", folder, "--no-progress"], capture_output=True, check=True)
     return sum(1 for name in h5py.File(os.path.join(folder, "results.h5"), "r")["timeseries"] if name.startswith("dem_"))
 
-def round_trip_us(monitors):
-    done = subprocess.run([os.path.join(build, "bin/zmq_round_trip"), "--round-trips", "5000", "--nodes", "112", "--monitors", str(monitors)],
-                          capture_output=True, text=True, check=True)
+def round_trip_us(monitors, work_us=0.0):
+    done = subprocess.run([os.path.join(build, "bin/zmq_round_trip"), "--round-trips", "3000", "--nodes", "112", "--monitors", str(monitors),
+                           "--server-work-us", f"{work_us:.1f}"], capture_output=True, text=True, check=True)
     return float(re.search(r"mean ([0-9.]+)", done.stdout).group(1))
 
 load = []
@@ -78,17 +81,20 @@ cases = [(1, 3000), (10, 600)]
 policies = [("sleeping (coupler default)", {}), ("spinning (libgomp default)", {"GOMP_SPINCOUNT": "300000"})]
 monitors = dem_monitor_count(scenario(1, 20))
 print(f"cores {os.cpu_count()}, demo pile: 112 interface nodes, {monitors} DEM monitors; median of {repeats} runs; times in microseconds")
+print("2 trips: two round trips whose servers compute as long as the DEM and the FDM did (the exchange's waits)")
 print(f"{'load':<10} {'DEM steps':>9} {'OpenMP threads idle':<28} {'exchange':>9} {'DEM':>8} {'FDM':>8} {'overhead':>9} {'2 trips':>8} {'ratio':>6}")
 try:
     for loaded in (False, True):
         set_load(loaded)
-        trips = 2 * statistics.median(round_trip_us(monitors) for _ in range(repeats))
+        floor = 2 * statistics.median(round_trip_us(monitors) for _ in range(repeats))
+        print(f"{'2 busy' if loaded else 'idle':<10} two back-to-back round trips (ping-pong, no work between): {floor:.0f}", flush=True)
         for dem_steps, exchanges in cases:
             path = scenario(dem_steps, exchanges)
             for label, environment in policies:
                 runs = [coupled_run(path, environment) for _ in range(repeats)]
                 exchange, dem, fdm = (statistics.median(r[i] for r in runs) for i in range(3))
                 overhead = statistics.median(r[0] - r[1] - r[2] for r in runs)
+                trips = statistics.median(round_trip_us(monitors, dem) + round_trip_us(monitors, fdm) for _ in range(repeats))
                 print(f"{'2 busy' if loaded else 'idle':<10} {dem_steps:>9} {label:<28} {exchange:>9.0f} {dem:>8.0f} {fdm:>8.0f} {overhead:>9.0f} "
                       f"{trips:>8.0f} {overhead / trips:>6.2f}", flush=True)
 finally:

@@ -37,15 +37,25 @@ struct Options {
   std::int64_t nodes = 112;     ///< interface nodes: the demo's 112
   std::int64_t monitors = 40;   ///< scalar monitors in each reply (the DEM's pile run sends about 40)
   std::string bind = "tcp://127.0.0.1:*";  ///< the coupler's servers bind loopback TCP by default
+  double work_us = 0.0;  ///< the child computes this long before each reply, as a solver would (not counted)
 };
+
+/// Keeps the CPU busy for `microseconds`, as a solver's step would.
+void compute_for(double microseconds) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double, std::micro>(microseconds);
+  while (std::chrono::steady_clock::now() < until) {
+  }
+}
 
 void print_help() {
   std::cout << "zmq_round_trip — wall time of one protocol round trip between two processes\n\n"
-               "Usage: zmq_round_trip [--round-trips N] [--nodes N] [--monitors N] [--bind ENDPOINT]\n\n"
+               "Usage: zmq_round_trip [--round-trips N] [--nodes N] [--monitors N] [--server-work-us T] [--bind ENDPOINT]\n\n"
                "A child process serves a ROUTER socket on loopback TCP; the parent sends N advance-like\n"
                "requests (one [nodes,3] f64 array) and waits for each advanced-like reply (one [nodes,3]\n"
                "array and `monitors` numbers), as the coupler does with each server. Prints the mean,\n"
-               "the median and the 90th percentile in microseconds.\n"
+               "the median and the 90th percentile in microseconds. With --server-work-us the child computes for T us\n"
+               "before each reply, as a solver does, and T is not counted: while it computes, the parent sleeps\n"
+               "in its receive, and waking it is part of what a round trip costs.\n"
                "Defaults: --round-trips 20000 --nodes 112 --monitors 40 --bind tcp://127.0.0.1:* (ipc://PATH: a Unix socket).\n";
 }
 
@@ -88,6 +98,7 @@ int serve(int endpoint_pipe, const Options& options) {
     auto frames = dfc::protocol::receive_frames(socket, std::chrono::seconds(30));
     if (!frames) return 1;
     const Message request = dfc::protocol::decode(dfc::protocol::frame_views(*frames, 1), limits);
+    compute_for(options.work_us);
     dfc::protocol::send_message(socket, advanced_like(request, options.nodes, options.monitors), &frames->front());
     ++answered;
   }
@@ -110,7 +121,7 @@ int measure(const std::string& endpoint, const Options& options) {
     if (!frames) throw std::runtime_error("no reply within 30 s");
     const Message reply = dfc::protocol::decode(dfc::protocol::frame_views(*frames, 0), limits);
     if (reply.reply_to != seq) throw std::runtime_error("reply out of order");
-    microseconds.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+    microseconds.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() - options.work_us);
   }
   // The first round trips include the connection's set-up: the figures are of the rest.
   const std::size_t warm_up = std::min<std::size_t>(microseconds.size() / 10, 100);
@@ -141,6 +152,7 @@ int main(int argc, char** argv) {
       if (arg == "--round-trips") options.round_trips = static_cast<std::int64_t>(dfc::parse_count_option(arg, value, 10, 100'000'000));
       else if (arg == "--nodes") options.nodes = static_cast<std::int64_t>(dfc::parse_count_option(arg, value, 1, 10'000'000));
       else if (arg == "--bind") options.bind = value;
+      else if (arg == "--server-work-us") options.work_us = dfc::parse_number_option(arg, value, dfc::Bounds{0.0, 1e6});
       else if (arg == "--monitors") options.monitors = static_cast<std::int64_t>(dfc::parse_count_option(arg, value, 0, 10'000));
       else throw dfc::UserError("unknown option '" + std::string(arg) + "'; see --help");
     }
