@@ -146,7 +146,9 @@ class GridWriter {
   // where the DEM sends it, the damage variable D (bond_damage).
   void bond_grid(const XdmfSnapshot& snapshot) {
     const std::optional<std::int64_t> bonds = bond_count(snapshot);
-    if (!bonds) return;
+    const XdmfArrayInfo* position = find(snapshot, "bond_position");
+    const XdmfArrayInfo* state = find(snapshot, "bond_state");
+    if (!bonds || position == nullptr || state == nullptr) return;  // bond_count checked them; said again for the reader (and GCC)
     const std::string index = snapshot.group_path.substr(snapshot.group_path.find_last_of('/') + 1);
     out_ << "      <Grid Name=\"" << escape(snapshot.role + "_bonds_" + index) << "\" GridType=\"Uniform\">\n";
     out_ << "        <Time Value=\"" << number_text(snapshot.time) << "\"/>\n";
@@ -155,9 +157,9 @@ class GridWriter {
          << ':' << polyvertex_connectivity_path(*bonds) << "</DataItem>\n";
     out_ << "        </Topology>\n";
     out_ << "        <Geometry GeometryType=\"XYZ\">\n";
-    data_item(snapshot, *find(snapshot, "bond_position"), "          ");
+    data_item(snapshot, *position, "          ");
     out_ << "        </Geometry>\n";
-    attribute(snapshot, *find(snapshot, "bond_state"), "Node");
+    attribute(snapshot, *state, "Node");
     if (const XdmfArrayInfo* damage = find(snapshot, "bond_damage")) attribute(snapshot, *damage, "Node");  // damage_bond's D
     out_ << "      </Grid>\n";
   }
