@@ -175,8 +175,10 @@ TEST(PcrmZones, TheRevScaledToAnotherSIsTheSameStateAtAnotherSize) {
   // strengths fixed) a damaged, yielding bond must then carry s^2 times the
   // force and s^3 times the couple, at the same damage: the same stresses.
   const double s0 = 2.1, s = 4.8 / 2.1, r = 0.116e-3 * s0 / 2.0;
-  const auto& law0 = std::get<DamageBondLaw>(upscale(test::chalk_at_s10(), s0).law);
-  const auto& law1 = std::get<DamageBondLaw>(upscale(test::chalk_at_s10(), s0 * s).law);
+  // Copies: upscale() returns a temporary, and a reference into its law
+  // dangled from the end of this statement (AddressSanitizer: stack-use-after-scope).
+  const DamageBondLaw law0 = std::get<DamageBondLaw>(upscale(test::chalk_at_s10(), s0).law);
+  const DamageBondLaw law1 = std::get<DamageBondLaw>(upscale(test::chalk_at_s10(), s0 * s).law);
   std::vector<double> h(DamageBondLaw::history_size, 0.0);
   set_bond_state(h.data(), BondState::intact);
   // Shear and a little opening at 1 cm/s until the bond has yielded and lost 5 % or more of its stiffness.
