@@ -5,6 +5,8 @@
 //   coupler run SCENARIO.json [--out DIR] [--no-progress]
 //   coupler run --resume DIR [--no-progress]
 //   coupler check SCENARIO.json
+//   coupler expand SCENARIO.json
+//   coupler schema
 #include <unistd.h>
 
 #include <atomic>
@@ -14,7 +16,9 @@
 #include <new>
 #include <string_view>
 
+#include "dfc/common/declaration.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/common/sections/scenario_sections.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/coupler/coupled_run.hpp"
 #include "dfc/coupler/participant.hpp"
@@ -41,20 +45,18 @@ void print_help() {
                "  coupler check SCENARIO.json\n"
                "      Validate the scenario: the top level here, each participant's section by\n"
                "      starting its server and configuring it. Runs no step.\n"
+               "  coupler expand SCENARIO.json\n"
+               "      Print the scenario as the coupler reads it (includes resolved, one entry per variant), as JSON.\n"
+               "  coupler schema\n"
+               "      Print the JSON Schema (draft 2020-12) of scenario files (scenario.schema.json).\n"
                "  coupler --help | --version\n\n"
                "Exit status: 0 success; 1 a server failed or the interface force balance broke\n"
                "(the message names the server; results written so far stay readable);\n"
                "2 bad input (the message names the scenario key); 130 stopped by Ctrl-C\n"
                "(results up to then are written).\n\n"
-               "Scenario (JSON, schema_version 1):\n"
-               "  name, description, gravity {g_m_s2, g_level, direction},\n"
-               "  participants {dem, continuum}: each {program | endpoint, args, config},\n"
-               "  coupling {exchange_interval, continuum_steps_per_exchange, dt_s, force_balance_tolerance, scheme},\n"
-               "  run {exchanges, deadline_s, startup_timeout_s, snapshot_every, checkpoint_every, stop_when},\n"
-               "  output {directory},\n"
-               "  variants [{label, patch}] (optional: one run per entry, the scenario with `patch` applied as a\n"
-               "  JSON Merge Patch, named <name>_<label>, results in <output.directory>/<label>).\n"
-               "See README.md (Scenarios) and scenarios/*.json.\n";
+               "Scenario (JSON, schema_version 1; every object may also \"include\" a file whose keys it extends):\n"
+            << dfc::describe_section(dfc::sections::scenario())
+            << "See README.md (Scenarios), scenarios/*.json and, for each server's config, dem_server --help and fdm_server --help.\n";
 }
 
 fs::path own_bin_dir() {
@@ -77,8 +79,20 @@ int run_command(int argc, char** argv) {
     std::cout << "coupler " << dfc::project_version() << " (protocol " << dfc::protocol::version_string() << ")\n";
     return 0;
   }
+  if (command == "schema") {
+    std::cout << dfc::sections::scenario_schema().dump(2) << "\n";
+    return 0;
+  }
+  if (command == "expand") {
+    if (argc != 3) throw dfc::UserError("coupler expand takes one scenario file (coupler expand SCENARIO.json)");
+    nlohmann::json documents = nlohmann::json::array();
+    for (const auto& scenario : dfc::coupler::load_scenarios(argv[2], own_bin_dir(), dfc::coupler::ScenarioFileRole::input))
+      documents.push_back(scenario.document);
+    std::cout << documents.dump(2) << "\n";
+    return 0;
+  }
   if (command != "run" && command != "check")
-    throw dfc::UserError("unknown command '" + std::string(command) + "'; expected 'run' or 'check' (see coupler --help)");
+    throw dfc::UserError("unknown command '" + std::string(command) + "'; expected 'run', 'check', 'expand' or 'schema' (see coupler --help)");
   fs::path scenario_path;
   dfc::coupler::RunOptions options;
   for (int i = 2; i < argc; ++i) {

@@ -12,6 +12,7 @@
 #include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
+#include "dfc/common/sections/scenario_sections.hpp"
 #include "dfc/coupler/scenario_includes.hpp"
 #include "dfc/coupler/scenario_variants.hpp"
 #include "dfc/protocol/message.hpp"
@@ -23,9 +24,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Time steps below 1e-12 s are no physical model's (a DEM step of micron
-// grains is ~1e-9 s); 1e-300 only made step counts overflow.
-constexpr Bounds kTimeStepBounds{1e-12, 1e6};
+static_assert(sections::kMaxStepsPerExchange == protocol::kMaxStepsPerAdvance,
+              "the declared steps per exchange must be what one advance may take (SPEC.md §4)");
 
 bool is_executable(const fs::path& p) {
   std::error_code ec;
@@ -56,7 +56,7 @@ ParticipantSpec read_participant(ConfigReader reader, const std::string& slot, c
                                  const std::array<double, 3>& gravity) {
   ParticipantSpec spec;
   spec.slot = slot;
-  spec.endpoint = reader.string("endpoint", "");
+  spec.endpoint = reader.has("endpoint") ? reader.string("endpoint") : std::string();
   if (spec.endpoint.empty()) {
     spec.program = reader.string("program");
     const auto resolved = resolve_program(spec.program, scenario_dir, bin_dir);
@@ -70,7 +70,6 @@ ParticipantSpec read_participant(ConfigReader reader, const std::string& slot, c
     if (const auto problem = protocol::endpoint_problem(spec.endpoint)) reader.fail("endpoint", *problem);
   }
   if (reader.has("args")) spec.args = reader.strings("args");
-  else reader.accept("args");
   const nlohmann::json& config = reader.raw("config");
   if (!config.is_object()) reader.fail("config", "expected an object: the section this server is configured with");
   spec.config = config;
@@ -164,21 +163,21 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   Scenario scenario;
   scenario.document = document;
   scenario.source = source;
-  ConfigReader root(document, "");
-  const std::int64_t schema = root.integer("schema_version", 1);  // required, >= 1
+  ConfigReader root(document, "", sections::scenario());
+  const std::int64_t schema = root.integer("schema_version");
   if (schema != kScenarioSchemaVersion)
     root.fail("schema_version", "this coupler reads schema_version " + std::to_string(kScenarioSchemaVersion) + ", the file has " +
                                     std::to_string(schema));
   scenario.name = root.string("name");
   if (!is_single_folder_name(scenario.name))
     root.fail("name", "expected a non-empty name without '/' that is not '.' or '..': it names the results folder results/<name>");
-  scenario.description = root.string("description", "");
+  scenario.description = root.string("description");
 
   // Gravity: g · N along a unit direction (virtual centrifuge, docs/theory/upscaling_and_pcrm.md §5).
   if (auto gravity = root.optional_child("gravity")) {
-    const double g = gravity->number("g_m_s2", 9.81, Bounds{0.0});
-    scenario.g_level = gravity->number("g_level", 1.0, Bounds{0.0, 1e5, true});
-    const auto direction = gravity->vec3("direction", {0.0, 0.0, -1.0});
+    const double g = gravity->number("g_m_s2");
+    scenario.g_level = gravity->number("g_level");
+    const auto direction = gravity->vec3("direction");
     const double norm = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
     if (!(norm > 0)) gravity->fail("direction", "expected a non-zero vector");
     for (int i = 0; i < 3; ++i) scenario.gravity_m_s2[std::size_t(i)] = g * scenario.g_level * direction[std::size_t(i)] / norm;
@@ -197,28 +196,24 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   if (auto coupling = root.optional_child("coupling")) {
     CouplingSpec& c = scenario.coupling;
     // Each exchange is one advance per side, which takes at most kMaxStepsPerAdvance steps (SPEC.md §4).
-    c.exchange_interval = coupling->integer("exchange_interval", 1, 1, protocol::kMaxStepsPerAdvance);
-    c.continuum_steps_per_exchange = coupling->integer("continuum_steps_per_exchange", 1, 1, protocol::kMaxStepsPerAdvance);
-    if (coupling->has("dt_s")) c.dt_s = coupling->number("dt_s", kTimeStepBounds);
-    else coupling->accept("dt_s");
-    c.force_balance_tolerance = coupling->number("force_balance_tolerance", 1e-9, Bounds{0.0, 1.0, true});
-    (void)coupling->choice("scheme", {"serial"}, "serial");
+    c.exchange_interval = coupling->integer("exchange_interval");
+    c.continuum_steps_per_exchange = coupling->integer("continuum_steps_per_exchange");
+    if (coupling->has("dt_s")) c.dt_s = coupling->number("dt_s");
+    c.force_balance_tolerance = coupling->number("force_balance_tolerance");
+    (void)coupling->string("scheme");
     coupling->finish();
   }
 
   ConfigReader run = root.child("run");
-  scenario.run.exchanges = run.integer("exchanges", 1);
-  const Bounds wait{0.0, kLongestWaitSeconds, true};
-  scenario.run.deadline_s = run.number("deadline_s", 60.0, wait);
-  scenario.run.startup_timeout_s = run.number("startup_timeout_s", 20.0, wait);
-  scenario.run.snapshot_every = run.integer("snapshot_every", 0, 0);
-  scenario.run.checkpoint_every = run.integer("checkpoint_every", 0, 0);
+  scenario.run.exchanges = run.integer("exchanges");
+  scenario.run.deadline_s = run.number("deadline_s");
+  scenario.run.startup_timeout_s = run.number("startup_timeout_s");
+  scenario.run.snapshot_every = run.integer("snapshot_every");
+  scenario.run.checkpoint_every = run.integer("checkpoint_every");
   if (auto stop = run.optional_child("stop_when")) {
     if (stop->has("unbalanced_force_ratio")) {
-      scenario.run.stop_unbalanced_force_ratio = stop->number("unbalanced_force_ratio", Bounds{0.0, 1.0, true});
+      scenario.run.stop_unbalanced_force_ratio = stop->number("unbalanced_force_ratio");
       if (!(*scenario.run.stop_unbalanced_force_ratio > 0.0)) stop->fail("unbalanced_force_ratio", "expected a ratio in (0, 1), e.g. 1e-3");
-    } else {
-      stop->accept("unbalanced_force_ratio");
     }
     if (stop->has("monitor")) {
       scenario.run.stop_monitor = stop->string("monitor");
@@ -230,14 +225,14 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
     }
     if (!scenario.run.stop_unbalanced_force_ratio && !scenario.run.stop_monitor)
       stop->fail("unbalanced_force_ratio", "stop_when needs \"unbalanced_force_ratio\" (equilibrium) or \"monitor\" with \"at_least\", or both");
-    scenario.run.stop_min_exchanges = stop->integer("min_exchanges", 1, 1);
+    scenario.run.stop_min_exchanges = stop->integer("min_exchanges");
     stop->finish();
   }
   run.finish();
 
   scenario.output_directory = fs::path("results") / scenario.name;
   if (auto output = root.optional_child("output")) {
-    scenario.output_directory = output->string("directory", scenario.output_directory.string());
+    if (output->has("directory")) scenario.output_directory = output->string("directory");
     // A run record lives in the folder it names (that is where --resume reads it).
     const fs::path inputs = role == ScenarioFileRole::input ? source : fs::path();
     if (const auto problem = output_directory_problem(scenario.output_directory, inputs)) output->fail("directory", *problem);

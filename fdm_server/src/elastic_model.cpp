@@ -14,12 +14,12 @@ ElasticModuli read_elastic_moduli(ConfigReader& material) {
   if (young_given && bulk_given)
     material.fail("bulk_modulus_pa", "give either young_modulus_pa + poisson_ratio or bulk_modulus_pa + shear_modulus_pa, not both");
   if (bulk_given) {
-    const double bulk = material.positive("bulk_modulus_pa");
-    const double shear = material.positive("shear_modulus_pa");
+    const double bulk = material.number("bulk_modulus_pa");
+    const double shear = material.number("shear_modulus_pa");
     return {bulk, shear};
   }
-  const double young = material.positive("young_modulus_pa");
-  const double poisson = material.number("poisson_ratio", Bounds{-1.0, 0.5, true});
+  const double young = material.number("young_modulus_pa");
+  const double poisson = material.number("poisson_ratio");
   if (!(poisson < 0.5))
     material.fail("poisson_ratio", "expected a number in (-1, 0.5), got 0.5 (incompressible; the bulk modulus would be infinite)");
   return moduli_from_young_poisson(young, poisson);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "dfc/common/config_reader.hpp"
+#include "dfc/common/sections/fdm_sections.hpp"
 #include "dfc/fdm/initial_stress.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
 #include "dfc/fdm/model_registry.hpp"
@@ -19,22 +20,6 @@ constexpr std::int64_t kMaxZones = 5'000'000;
 
 Vec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 
-Vec3 read_positive_vec3(ConfigReader& cfg, std::string_view key) {
-  const nlohmann::json& value = cfg.raw(key);
-  const auto positive = [](const nlohmann::json& v) { return v.is_number() && v.get<double>() > 0.0 && std::isfinite(v.get<double>()); };
-  if (!value.is_array() || value.size() != 3 || !std::all_of(value.begin(), value.end(), positive))
-    cfg.fail(key, "expected an array of 3 positive lengths [Lx, Ly, Lz] in m, got " + value.dump());
-  return {value[0].get<double>(), value[1].get<double>(), value[2].get<double>()};
-}
-
-std::array<Index, 3> read_zone_counts(ConfigReader& cfg, std::string_view key) {
-  const nlohmann::json& value = cfg.raw(key);
-  const auto valid_count = [](const nlohmann::json& v) { return v.is_number_integer() && v.get<std::int64_t>() >= 1; };
-  if (!value.is_array() || value.size() != 3 || !std::all_of(value.begin(), value.end(), valid_count))
-    cfg.fail(key, "expected an array of 3 integers >= 1 [nx, ny, nz], got " + value.dump());
-  return {value[0].get<Index>(), value[1].get<Index>(), value[2].get<Index>()};
-}
-
 void check_zone_total(ConfigReader& cfg, std::string_view key, double zones) {
   if (zones > double(kMaxZones))
     cfg.fail(key, "the mesh would have " + std::to_string(std::int64_t(zones)) + " zones; at most " + std::to_string(kMaxZones) +
@@ -43,37 +28,33 @@ void check_zone_total(ConfigReader& cfg, std::string_view key, double zones) {
 
 Mesh read_box(ConfigReader& cfg) {
   BoxSpec spec;
-  spec.origin = to_vec3(cfg.vec3("origin_m", {0.0, 0.0, 0.0}));
-  spec.size = read_positive_vec3(cfg, "size_m");
-  spec.zones = read_zone_counts(cfg, "zones");
-  if (cfg.has("grading")) {
-    const auto grading = cfg.vec3("grading");
-    for (const double g : grading)
-      if (!(g > 0.0)) cfg.fail("grading", "expected 3 positive ratios [gx, gy, gz] (spacing growth per zone along +x, +y, +z)");
-    spec.grading = grading;
-  }
+  spec.origin = to_vec3(cfg.vec3("origin_m"));
+  spec.size = to_vec3(cfg.vec3("size_m"));
+  const auto zones = cfg.integers3("zones");
+  spec.zones = {Index(zones[0]), Index(zones[1]), Index(zones[2])};
+  spec.grading = cfg.vec3("grading");
   check_zone_total(cfg, "zones", double(spec.zones[0]) * double(spec.zones[1]) * double(spec.zones[2]));
   return make_box(spec);
 }
 
 Mesh read_cylinder_cavity(ConfigReader& cfg) {
   CylinderCavitySpec spec;
-  spec.inner_radius = cfg.positive("inner_radius_m");
-  spec.outer_radius = cfg.positive("outer_radius_m");
+  spec.inner_radius = cfg.number("inner_radius_m");
+  spec.outer_radius = cfg.number("outer_radius_m");
   if (!(spec.outer_radius > spec.inner_radius)) cfg.fail("outer_radius_m", "must be larger than inner_radius_m");
-  spec.z_bottom = cfg.number("z_bottom_m", 0.0);
-  spec.height = cfg.positive("height_m");
-  spec.zones_radial = Index(cfg.integer("zones_radial", 1));
-  spec.zones_around = Index(cfg.integer("zones_around", 1));
-  spec.zones_vertical = Index(cfg.integer("zones_vertical", 1));
-  spec.grading_ratio = cfg.positive("grading_ratio", 1.0);
-  spec.angle_deg = cfg.number("angle_deg", 360.0, Bounds{0.0, 360.0, true});
+  spec.z_bottom = cfg.number("z_bottom_m");
+  spec.height = cfg.number("height_m");
+  spec.zones_radial = Index(cfg.integer("zones_radial"));
+  spec.zones_around = Index(cfg.integer("zones_around"));
+  spec.zones_vertical = Index(cfg.integer("zones_vertical"));
+  spec.grading_ratio = cfg.number("grading_ratio");
+  spec.angle_deg = cfg.number("angle_deg");
   if (spec.angle_deg == 360.0 && spec.zones_around < 3) cfg.fail("zones_around", "the full circle needs zones_around >= 3");
-  spec.max_aspect_ratio = cfg.number("max_aspect_ratio", kDefaultMaxAspectRatio, Bounds{1.0});
+  spec.max_aspect_ratio = cfg.number("max_aspect_ratio");
   // A floor at z_bottom_m (the default) is no floor: the cavity runs through
   // the whole height. Scenarios that include one with a base say so (an
   // include cannot delete a key).
-  if (const double floor = cfg.number("cavity_floor_z_m", spec.z_bottom); floor != spec.z_bottom) {
+  if (const double floor = cfg.has("cavity_floor_z_m") ? cfg.number("cavity_floor_z_m") : spec.z_bottom; floor != spec.z_bottom) {
     spec.cavity_floor_z = floor;
     if (const auto problem = cavity_floor_problem(spec)) cfg.fail(problem->key, problem->message);
   }
@@ -89,13 +70,13 @@ Mesh read_cylinder_cavity(ConfigReader& cfg) {
 
 Mesh read_sphere_cavity_octant(ConfigReader& cfg) {
   SphereCavityOctantSpec spec;
-  spec.inner_radius = cfg.positive("inner_radius_m");
-  spec.outer_radius = cfg.positive("outer_radius_m");
+  spec.inner_radius = cfg.number("inner_radius_m");
+  spec.outer_radius = cfg.number("outer_radius_m");
   if (!(spec.outer_radius > spec.inner_radius)) cfg.fail("outer_radius_m", "must be larger than inner_radius_m");
-  spec.zones_radial = Index(cfg.integer("zones_radial", 1));
-  spec.zones_around = Index(cfg.integer("zones_around", 1));
-  spec.grading_ratio = cfg.positive("grading_ratio", 1.0);
-  spec.max_aspect_ratio = cfg.number("max_aspect_ratio", kDefaultMaxAspectRatio, Bounds{1.0});
+  spec.zones_radial = Index(cfg.integer("zones_radial"));
+  spec.zones_around = Index(cfg.integer("zones_around"));
+  spec.grading_ratio = cfg.number("grading_ratio");
+  spec.max_aspect_ratio = cfg.number("max_aspect_ratio");
   check_zone_total(cfg, "zones_radial", 3.0 * double(spec.zones_radial) * double(spec.zones_around) * double(spec.zones_around));
   try {
     return make_sphere_cavity_octant(spec);
@@ -107,13 +88,14 @@ Mesh read_sphere_cavity_octant(ConfigReader& cfg) {
 }
 
 Mesh read_mesh(ConfigReader cfg) {
-  const std::string type = cfg.choice("type", {"box", "cylinder_cavity", "sphere_cavity_octant"});
+  const std::string type = cfg.string("type");
   Mesh mesh = type == "box" ? read_box(cfg) : (type == "cylinder_cavity" ? read_cylinder_cavity(cfg) : read_sphere_cavity_octant(cfg));
   cfg.finish();
   return mesh;
 }
 
 Material read_model_and_parameters(ConfigReader cfg) {
+  if (!cfg.has("model")) cfg.fail("model", "missing: give \"model\" and its parameters, or a \"preset\" (fdm_server --help lists both)");
   const std::string keyword = cfg.string("model");
   const ConstitutiveModelEntry* entry = find_constitutive_model(keyword);
   if (entry == nullptr) {
@@ -122,7 +104,8 @@ Material read_model_and_parameters(ConfigReader cfg) {
     cfg.fail("model", "unknown constitutive model \"" + keyword + "\"; known models: " + known);
   }
   Material material;
-  material.density = cfg.positive("density_kg_m3");
+  if (!cfg.has("density_kg_m3")) cfg.fail("density_kg_m3", "missing required key (mass density, kg/m3)");
+  material.density = cfg.number("density_kg_m3");
   try {
     material.model = entry->create(cfg);
   } catch (const ConfigError&) {
@@ -138,8 +121,9 @@ Material read_model_and_parameters(ConfigReader cfg) {
 // of the object override; the expanded object is then read as usual, so
 // errors still name "material.<key>".
 Material read_material(const nlohmann::json& given) {
-  if (!given.is_object() || !given.contains("preset")) return read_model_and_parameters(ConfigReader(given, "material"));
-  ConfigReader cfg(given, "material");
+  if (!given.is_object() || !given.contains("preset"))
+    return read_model_and_parameters(ConfigReader(given, "material", sections::fdm_material()));
+  ConfigReader cfg(given, "material", sections::fdm_material());
   const std::string name = cfg.string("preset");
   const NamedMaterial* preset = find_named_material(name);
   if (preset == nullptr) {
@@ -148,18 +132,19 @@ Material read_material(const nlohmann::json& given) {
     cfg.fail("preset", "unknown named material \"" + name + "\"; known: " + known);
   }
   const nlohmann::json expanded = expand_named_material(*preset, given);
-  return read_model_and_parameters(ConfigReader(expanded, "material"));
+  return read_model_and_parameters(ConfigReader(expanded, "material", sections::fdm_material()));
 }
 
 SolverSettings read_settings(ConfigReader& root) {
   SolverSettings settings;
-  settings.gravity = to_vec3(root.vec3("gravity_m_s2", {0.0, 0.0, 0.0}));
+  settings.gravity = to_vec3(root.vec3("gravity_m_s2"));
+  settings.local_damping = sections::fdm_damping().find("local")->default_value.get<double>();
   if (auto damping = root.optional_child("damping")) {
-    settings.local_damping = damping->number("local", 0.8, Bounds{0.0, 1.0});
+    settings.local_damping = damping->number("local");
     if (!(settings.local_damping < 1.0)) damping->fail("local", "expected a number in [0, 1), got 1 (no net force would remain)");
     damping->finish();
   }
-  settings.mass_scaling = root.boolean("mass_scaling", true);
+  settings.mass_scaling = root.boolean("mass_scaling");
   settings.threads = read_thread_count(root);
   return settings;
 }
@@ -169,7 +154,7 @@ BoundaryCondition read_boundary(ConfigReader& entry, const Mesh& mesh) {
   condition.group = entry.string("group");
   if (!mesh.has_face_group(condition.group))
     entry.fail("group", "unknown face group \"" + condition.group + "\"; this mesh has " + mesh.face_group_names());
-  const std::string kind = entry.choice("condition", {"fixed", "roller", "pressure", "traction"});
+  const std::string kind = entry.string("condition");
   if (kind == "fixed") condition.kind = BoundaryKind::fixed;
   if (kind == "roller") condition.kind = BoundaryKind::roller;
   if (kind == "pressure") {
@@ -185,10 +170,10 @@ BoundaryCondition read_boundary(ConfigReader& entry, const Mesh& mesh) {
 }
 
 void read_initial_stress(ConfigReader cfg, Solver& solver) {
-  [[maybe_unused]] const std::string type = cfg.choice("type", {"geostatic"});  // the only profile so far
+  [[maybe_unused]] const std::string type = cfg.string("type");  // "geostatic", the only profile so far
   GeostaticStress profile;
-  profile.k0 = cfg.number("k0", Bounds{0.0});
-  profile.z_top = cfg.number("z_top_m", solver.mesh().max_z());
+  profile.k0 = cfg.number("k0");
+  profile.z_top = cfg.has("z_top_m") ? cfg.number("z_top_m") : solver.mesh().max_z();
   cfg.finish();
   const Vec3 g = solver.settings().gravity;
   if (g.x() != 0.0 || g.y() != 0.0 || g.z() > 0.0)
@@ -200,7 +185,7 @@ void read_initial_stress(ConfigReader cfg, Solver& solver) {
 
 CouplingSettings read_coupling(ConfigReader cfg, const Mesh& mesh) {
   CouplingSettings coupling;
-  coupling.role = cfg.choice("role", {"provider", "driven"}) == "provider" ? CouplingRole::provider : CouplingRole::driven;
+  coupling.role = cfg.string("role") == "provider" ? CouplingRole::provider : CouplingRole::driven;
   coupling.group = cfg.string("group");
   if (!mesh.has_face_group(coupling.group))
     cfg.fail("group", "unknown face group \"" + coupling.group + "\"; this mesh has " + mesh.face_group_names());
@@ -213,7 +198,7 @@ CouplingSettings read_coupling(ConfigReader cfg, const Mesh& mesh) {
 Material load_fdm_material(const nlohmann::json& material) { return read_material(material); }
 
 FdmModel load_fdm_model(const nlohmann::json& section) {
-  ConfigReader root(section, "");
+  ConfigReader root(section, "", sections::fdm_server());
   Mesh mesh = read_mesh(root.child("mesh"));
   Material material = read_material(root.raw("material"));
   const SolverSettings settings = read_settings(root);

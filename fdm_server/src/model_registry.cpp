@@ -13,10 +13,9 @@ namespace {
 
 // The one table of constitutive models (CONTRIBUTING.md §2).
 const std::array<ConstitutiveModelEntry, 3> kModels = {{
-    {ElasticModel::kKeyword, ElasticModel::kSummary, ElasticModel::kParameters, &ElasticModel::from_config},
-    {MohrCoulombModel::kKeyword, MohrCoulombModel::kSummary, MohrCoulombModel::kParameters, &MohrCoulombModel::from_config},
-    {StructuredCamClayModel::kKeyword, StructuredCamClayModel::kSummary, StructuredCamClayModel::kParameters,
-     &StructuredCamClayModel::from_config},
+    {ElasticModel::kKeyword, ElasticModel::kSummary, &ElasticModel::from_config},
+    {MohrCoulombModel::kKeyword, MohrCoulombModel::kSummary, &MohrCoulombModel::from_config},
+    {StructuredCamClayModel::kKeyword, StructuredCamClayModel::kSummary, &StructuredCamClayModel::from_config},
 }};
 
 }  // namespace
@@ -28,14 +27,5 @@ const ConstitutiveModelEntry* find_constitutive_model(std::string_view keyword) 
   return it == kModels.end() ? nullptr : &*it;
 }
 
-std::string describe_constitutive_models() {
-  std::string text;
-  for (const ConstitutiveModelEntry& entry : kModels) {
-    text += "  \"" + std::string(entry.keyword) + "\": " + std::string(entry.summary) + "\n";
-    for (const ModelParameter& p : entry.parameters)
-      text += "      " + std::string(p.key) + " [" + std::string(p.unit) + "]  " + std::string(p.meaning) + "\n";
-  }
-  return text;
-}
 
 }  // namespace dfc::fdm

@@ -50,14 +50,14 @@ MohrCoulombModel::MohrCoulombModel(ElasticModuli moduli, const MohrCoulombStreng
 std::unique_ptr<ConstitutiveModel> MohrCoulombModel::from_config(ConfigReader& material) {
   const ElasticModuli moduli = read_elastic_moduli(material);
   MohrCoulombStrength strength;
-  strength.cohesion = material.number("cohesion_pa", Bounds{0.0});
-  strength.friction_angle_deg = material.number("friction_angle_deg", Bounds{0.0, 90.0});
+  strength.cohesion = material.number("cohesion_pa");
+  strength.friction_angle_deg = material.number("friction_angle_deg");
   if (!(strength.friction_angle_deg < 90.0)) material.fail("friction_angle_deg", "expected an angle in [0, 90) degrees, got 90");
-  strength.dilation_angle_deg = material.number("dilation_angle_deg", 0.0, Bounds{0.0});
+  strength.dilation_angle_deg = material.number("dilation_angle_deg");
   if (strength.dilation_angle_deg > strength.friction_angle_deg)
     material.fail("dilation_angle_deg", "must not exceed friction_angle_deg (" + std::to_string(strength.friction_angle_deg) +
                                             "); FLAC's admissible range is 0 <= psi <= phi");
-  strength.tensile_strength = material.number("tensile_strength_pa", Bounds{0.0});
+  strength.tensile_strength = material.number("tensile_strength_pa");
   return std::make_unique<MohrCoulombModel>(moduli, strength);
 }
 

@@ -38,15 +38,15 @@ StructuredCamClayModel::StructuredCamClayModel(const StructuredCamClayParameters
 std::unique_ptr<ConstitutiveModel> StructuredCamClayModel::from_config(ConfigReader& material) {
   StructuredCamClayParameters m;
   m.moduli = read_elastic_moduli(material);
-  m.ps0 = material.positive("ps0_pa");
-  m.pt0 = material.number("pt0_pa", Bounds{0.0});
-  m.mf = material.positive("mf");
-  m.mg = material.positive("mg", m.mf);
-  m.rho_s = material.number("rho_s", 0.0);
-  m.rho_t = material.number("rho_t", 0.0);
-  m.xi_s = material.number("xi_s", 0.0);
-  m.xi_t = material.number("xi_t", 0.0);
-  m.k = material.number("k", 0.0, Bounds{0.0});
+  m.ps0 = material.number("ps0_pa");
+  m.pt0 = material.number("pt0_pa");
+  m.mf = material.number("mf");
+  m.mg = material.has("mg") ? material.number("mg") : m.mf;
+  m.rho_s = material.number("rho_s");
+  m.rho_t = material.number("rho_t");
+  m.xi_s = material.number("xi_s");
+  m.xi_t = material.number("xi_t");
+  m.k = material.number("k");
   return std::make_unique<StructuredCamClayModel>(m);
 }
 

@@ -6,13 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include "dfc/common/sections/dem_contact_laws.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
 
 namespace dfc::dem {
 namespace {
 
 DamageBondLaw seed001_law() {  // Ciantia et al. 2024 Table 1 (no shear dashpot: the last value)
-  return DamageBondLaw::from_parameters(std::vector<double>{1.7e9, 5.0, 0.5, 0.0, 1.7e9, 5.0, 1.0, 1e6, 50e6, 2e6, 2e-5, 2e-5, 6e-3, 0.0, 0.0});
+  const std::vector<double> values{1.7e9, 5.0, 0.5, 0.0, 1.7e9, 5.0, 1.0, 1e6, 50e6, 2e6, 2e-5, 2e-5, 6e-3, 0.0, 0.0};  // declaration order
+  return DamageBondLaw::from_parameters(LawParameters(sections::damage_bond_law().parameters, values));
 }
 
 TEST(DamageBond, CombinedCyclicPathStaysInsideTheEnvelopeWithMonotoneDamage) {

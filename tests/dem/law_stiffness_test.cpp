@@ -80,15 +80,15 @@ double bond_kn_times_area(double lambda) { return modulus / r_sum * std::numbers
 TEST(LawStiffness, EveryModulusAndStiffnessKeyStatesWhatItSets) {
   for (const auto& law : contact_law_registry()) {
     for (const auto& p : law.parameters) {
-      const bool sets_stiffness = p.name.ends_with("emod_pa") || p.name == "kn_n_m" || p.name == "ks_n_m";
+      const bool sets_stiffness = p.key.ends_with("emod_pa") || p.key == "kn_n_m" || p.key == "ks_n_m";
       if (!sets_stiffness) continue;
       bool found = false;
-      for (const auto& meaning : law.stiffness) found = found || meaning.key == p.name;
-      EXPECT_TRUE(found) << law.keyword << "." << p.name << " has no stiffness statement in the registry";
+      for (const auto& meaning : law.stiffness) found = found || meaning.key == p.key;
+      EXPECT_TRUE(found) << law.keyword << "." << p.key << " has no stiffness statement in the registry";
     }
     for (const auto& meaning : law.stiffness) {
       bool declared = false;
-      for (const auto& p : law.parameters) declared = declared || p.name == meaning.key;
+      for (const auto& p : law.parameters) declared = declared || p.key == meaning.key;
       EXPECT_TRUE(declared) << law.keyword << ": the statement names " << meaning.key << ", which the law does not read";
       EXPECT_FALSE(meaning.source.empty()) << law.keyword << "." << meaning.key;
     }

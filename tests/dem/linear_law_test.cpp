@@ -147,8 +147,8 @@ TEST(ContactLawRegistry, LinearDeclaresParametersHistoryAndUpscaling) {
   ASSERT_NE(info, nullptr);
   EXPECT_EQ(info->history.size(), LinearLaw::history_size);
   ASSERT_EQ(info->parameters.size(), 5u);
-  EXPECT_EQ(info->parameters[4].name, "damping_ratio_shear");
-  EXPECT_EQ(info->parameters[0].name, "kn_n_m");
+  EXPECT_EQ(info->parameters[4].key, "damping_ratio_shear");
+  EXPECT_EQ(info->parameters[0].key, "kn_n_m");
   EXPECT_EQ(info->parameters[0].unit, "N/m");
   const ContactLawSetting base = test::linear(1e5, 4e4, 0.5, 0.1);
   const ContactLawSetting scaled = upscale(base, 3.0);

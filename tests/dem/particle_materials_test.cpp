@@ -29,7 +29,7 @@ TEST(ParticleMaterials, TwoUpscalingsOfOneSetMixToTheSetAtTheirGeometricMeanScal
   const ContactLawSetting expected = upscale(base, std::sqrt(2.1 * 4.8));
   ASSERT_EQ(mixed.values.size(), expected.values.size());
   for (std::size_t k = 0; k < mixed.values.size(); ++k)
-    EXPECT_NEAR(mixed.values[k], expected.values[k], 1e-14 * std::abs(expected.values[k])) << base.info->parameters[k].name;
+    EXPECT_NEAR(mixed.values[k], expected.values[k], 1e-14 * std::abs(expected.values[k])) << base.info->parameters[k].key;
   EXPECT_NEAR(std::get<DamageBondLaw>(mixed.law).u_cn, 2e-5 * std::sqrt(2.1 * 4.8), 1e-19);
 }
 

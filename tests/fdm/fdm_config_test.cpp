@@ -66,10 +66,10 @@ TEST(FdmConfig, UnknownKeyIsNamed) {
 TEST(FdmConfig, NegativeSizeIsNamed) {
   nlohmann::json section = valid_section();
   section["mesh"]["size_m"] = {1, -1, 2};
-  EXPECT_EQ(key_path_of_error(section), "mesh.size_m");
+  EXPECT_EQ(key_path_of_error(section), "mesh.size_m[1]");  // the element, as the schema names it
   section = valid_section();
   section["mesh"]["zones"] = {2, 0, 4};
-  EXPECT_EQ(key_path_of_error(section), "mesh.zones");
+  EXPECT_EQ(key_path_of_error(section), "mesh.zones[1]");
   section["mesh"] = {{"type", "cylinder_cavity"}, {"inner_radius_m", 2.0}, {"outer_radius_m", 1.0}, {"height_m", 1.0}};
   EXPECT_EQ(key_path_of_error(section), "mesh.outer_radius_m");
 }

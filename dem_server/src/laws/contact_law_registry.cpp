@@ -5,13 +5,14 @@
 #include <stdexcept>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/sections/dem_contact_laws.hpp"
 
 namespace dfc::dem {
 
 namespace {
 
 template <class Law>
-ContactLaw make_law(std::span<const double> values) {
+ContactLaw make_law(const LawParameters& values) {
   return ContactLaw{Law::from_parameters(values)};
 }
 
@@ -27,7 +28,7 @@ std::vector<ContactLawInfo> build_registry() {
       .summary = "PFC linear model: no-tension normal spring, incremental shear spring with Coulomb slip, optional normal dashpot",
       .reference = "Itasca PFC linear model; Cundall & Strack (1979); docs/theory/dem_contact_laws.md §2.3",
       .upscaling_rule = "k_n and k_s scale with S (stiffness ~ E* R, Thakur et al. 2015); friction and damping ratio stay fixed",
-      .parameters = LinearLaw::parameter_specs(),
+      .parameters = sections::linear_law().parameters,
       .history = LinearLaw::history_columns(),
       .make = &make_law<LinearLaw>,
       .stiffness = {{"kn_n_m", "k_n = kn_n_m [N/m], the same for every pair", "Cundall & Strack (1979); docs/theory/dem_contact_laws.md §2.3"},
@@ -39,7 +40,7 @@ std::vector<ContactLawInfo> build_registry() {
       .summary = "linear parallel bond: linear frictional contact plus a brittle elastic bond disc carrying force and moment",
       .reference = "Potyondy & Cundall (2004) IJRMMS 41:1329; Itasca PFC linearpbond; docs/theory/dem_contact_laws.md §2",
       .upscaling_rule = "E*, Ebar*, stiffness ratios, lambda, beta and strengths stay fixed (stiffnesses follow R); bond_gap_m scales with S",
-      .parameters = LinearPbondLaw::parameter_specs(),
+      .parameters = sections::linear_pbond_law().parameters,
       .history = LinearPbondLaw::history_columns(),
       .make = &make_law<LinearPbondLaw>,
       .stiffness = {{"emod_pa", linear_contact_formula, deformability_source},
@@ -52,7 +53,7 @@ std::vector<ContactLawInfo> build_registry() {
       .summary = "soft bond: linear softening in tension (inferred form, docs/dem_bond_laws.md), brittle in shear, then linear frictional",
       .reference = "Itasca PFC softbond; Ma & Huang (2018); docs/theory/dem_contact_laws.md §1 (equations inferred, §1.2)",
       .upscaling_rule = "E*, kappa*, lambda, beta, strengths, zeta and gamma stay fixed (stiffness follows R); bond_gap_m scales with S",
-      .parameters = SoftBondLaw::parameter_specs(),
+      .parameters = sections::soft_bond_law().parameters,
       .history = SoftBondLaw::history_columns(),
       .make = &make_law<SoftBondLaw>,
       .stiffness = {{"sb_emod_pa",
@@ -68,7 +69,7 @@ std::vector<ContactLawInfo> build_registry() {
       .summary = "Zheng-Ciantia damage-plasticity bond: N-V-M envelope, associated flow, damage D shrinking stiffness and capacities",
       .reference = "Zheng & Ciantia (2025) RMRE doi 10.1007/s00603-025-04411-0; docs/theory/dem_contact_laws.md §3; Ciantia et al. 2024 Eqs. 1-2",
       .upscaling_rule = "moduli, stiffness ratios, strengths and theta_c stay fixed; ucn_m, ucs_m and bond_gap_m scale with S (guide Eq. 5)",
-      .parameters = DamageBondLaw::parameter_specs(),
+      .parameters = sections::damage_bond_law().parameters,
       .history = DamageBondLaw::history_columns(),
       .make = &make_law<DamageBondLaw>,
       .stiffness = {{"emod_pa", linear_contact_formula + ", once the bond is damaged or broken",
@@ -146,20 +147,26 @@ void ContactLawSetting::add_bond_load(double* history, const ContactKinematics& 
       law);
 }
 
-ContactLawSetting read_contact_law(ConfigReader cfg) {
-  const std::string keyword = cfg.string("law", std::string(LinearLaw::keyword));
+ContactLawSetting read_contact_law(ConfigReader given) {
+  // A law's key that another law reads with another meaning: refused by name
+  // before the declared reader would call it merely unknown.
+  const std::string given_keyword = given.has("law") ? given.string("law") : std::string(LinearLaw::keyword);
+  if (const ContactLawInfo* given_info = find_contact_law(given_keyword))
+    for (const auto& old : given_info->renamed)
+      if (given.has(old.key))
+        given.fail(old.key, "law \"" + given_keyword + "\" reads this value as \"" + old.renamed_to + "\": " + old.why + "; rename the key to \"" +
+                                old.renamed_to + "\" (same value, same results)");
+  if (find_contact_law(given_keyword) == nullptr)
+    given.fail("law", "unknown contact law \"" + given_keyword + "\"; the registry has " + registry_keywords());
+  ConfigReader cfg = given.declared_as_section(sections::dem_contact());
+  const std::string keyword = cfg.string("law");
   const ContactLawInfo* info = find_contact_law(keyword);
   if (info == nullptr) cfg.fail("law", "unknown contact law \"" + keyword + "\"; the registry has " + registry_keywords());
-  for (const auto& old : info->renamed)
-    if (cfg.has(old.key))
-      cfg.fail(old.key, "law \"" + keyword + "\" reads this value as \"" + old.renamed_to + "\": " + old.why + "; rename the key to \"" +
-                            old.renamed_to + "\" (same value, same results)");
   ContactLawSetting setting;
   setting.info = info;
-  for (const auto& spec : info->parameters)
-    setting.values.push_back(spec.default_value ? cfg.number(spec.name, *spec.default_value, spec.bounds) : cfg.number(spec.name, spec.bounds));
+  for (const auto& parameter : info->parameters) setting.values.push_back(cfg.number(parameter.key));
   cfg.finish();
-  setting.law = info->make(setting.values);
+  setting.law = info->make(LawParameters(info->parameters, setting.values));
   return setting;
 }
 
@@ -172,7 +179,7 @@ ContactLawSetting upscale(const ContactLawSetting& setting, double scale_factor)
   ContactLawSetting out = setting;
   for (std::size_t k = 0; k < out.values.size(); ++k)
     out.values[k] *= std::pow(scale_factor, setting.info->parameters[k].upscaling_exponent);
-  out.law = setting.info->make(out.values);
+  out.law = setting.info->make(LawParameters(out.info->parameters, out.values));
   return out;
 }
 
@@ -184,17 +191,23 @@ std::string describe_contact_laws() {
         << "    upscaling by S: " << info.upscaling_rule << "\n";
     for (const auto& s : info.stiffness) out << "    stiffness: " << s.key << " sets " << s.formula << " (" << s.source << ")\n";
     for (const auto& r : info.renamed) out << "    " << r.key << ": renamed " << r.renamed_to << " (refused: " << r.why << ")\n";
-    for (const auto& p : info.parameters) {
-      out << "    " << p.name << " [" << p.unit << "] ";
-      if (p.default_value) out << "(default " << *p.default_value << ")";
-      else out << "(required)";
-      out << ": " << p.sentence << "\n";
-    }
+    for (const auto& p : info.parameters) out << "    " << p.key << " [" << p.unit << "] (" << describe_presence(p) << "): " << p.doc << "\n";
     out << "    per-contact history:";
     for (const auto& h : info.history) out << " " << h.name << " [" << h.unit << "]";
     out << "\n";
   }
   return out.str();
+}
+
+LawParameters::LawParameters(std::span<const ParameterDeclaration> declared, std::span<const double> values)
+    : declared_(declared), values_(values) {
+  if (declared.size() != values.size()) throw std::logic_error("a law's values do not match its declaration");
+}
+
+double LawParameters::operator[](std::string_view key) const {
+  for (std::size_t k = 0; k < declared_.size(); ++k)
+    if (declared_[k].key == key) return values_[k];
+  throw std::logic_error("a contact law reads \"" + std::string(key) + "\", which its declaration lacks (dfc/common/sections/dem_contact_laws.hpp)");
 }
 
 }  // namespace dfc::dem

@@ -6,32 +6,6 @@
 
 namespace dfc::dem {
 
-std::vector<ParameterSpec> DamageBondLaw::parameter_specs() {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  const Bounds positive{0.0, inf, true};
-  const Bounds non_negative{0.0, inf, false};
-  // Upscaling (guide Eq. 5, docs/theory/dem_contact_laws.md §3.7): moduli, stiffness ratios and
-  // strengths and θ_c stay fixed; u_cn, u_cs and the bonding gap scale with S.
-  return {
-      {"emod_pa", "Pa", std::nullopt, "effective modulus E* of the linear contact, k_n = pi E* R_min^2/(R1+R2)", positive, 0.0},
-      {"kratio", "-", 1.0, "normal-to-shear stiffness ratio kappa* of the linear contact", positive, 0.0},
-      {"friction", "-", 0.5, "Coulomb friction coefficient mu of the linear contact", non_negative, 0.0},
-      {"damping_ratio_normal", "-", 0.0, "normal viscous damping of the linear contact, fraction of critical", Bounds{0.0, 1.0}, 0.0},
-      {"bond_emod_pa", "Pa", std::nullopt, "bond effective modulus Ebar*, kbar_n = Ebar*/(R1+R2) [Pa/m]", positive, 0.0},
-      {"bond_kratio", "-", 1.0, "bond normal-to-shear stiffness ratio kappabar*", positive, 0.0},
-      {"bond_rmul", "-", 1.0, "bond radius multiplier lambda: Rbar = lambda min(R1, R2)", positive, 0.0},
-      {"ten_pa", "Pa", std::nullopt, "bond tensile strength sigma_t (Nbar in tension, Mtilde)", positive, 0.0},
-      {"com_pa", "Pa", std::nullopt, "bond compressive strength sigma_c (Nbar in compression)", positive, 0.0},
-      {"coh_pa", "Pa", std::nullopt, "bond shear strength C (Vbar)", positive, 0.0},
-      {"ucn_m", "m", std::nullopt, "normal softening length u_cn of the damage law", positive, 1.0},
-      {"ucs_m", "m", std::nullopt, "shear softening length u_cs of the damage law", positive, 1.0},
-      {"theta_c_rad", "rad", std::nullopt, "bending softening rotation theta_c of the damage law", positive, 0.0},
-      {"bond_gap_m", "m", 0.0, "pairs whose surface gap is at most this at start are bonded", non_negative, 1.0},
-      {"damping_ratio_shear", "-", 0.0, "shear viscous damping of the linear contact, fraction of critical, cut while it slides",
-       Bounds{0.0, 1.0}, 0.0},
-  };
-}
-
 std::vector<HistoryColumn> DamageBondLaw::history_columns() {
   return {{"bond_state", "-"},        {"damage", "-"},           {"opening", "m"},          {"slip_x", "m"},
           {"slip_y", "m"},            {"slip_z", "m"},           {"twist", "rad"},          {"bend_x", "rad"},
@@ -41,10 +15,11 @@ std::vector<HistoryColumn> DamageBondLaw::history_columns() {
           {"accumulated_plastic_bend", "rad"}, {"shear_force_x", "N"}, {"shear_force_y", "N"}, {"shear_force_z", "N"}};
 }
 
-DamageBondLaw DamageBondLaw::from_parameters(std::span<const double> v) {
-  return {.emod = v[0], .kratio = v[1], .friction = v[2], .damping_ratio_normal = v[3], .bond_emod = v[4], .bond_kratio = v[5],
-          .radius_multiplier = v[6], .tensile_strength = v[7], .compressive_strength = v[8], .cohesion = v[9], .u_cn = v[10],
-          .u_cs = v[11], .theta_c = v[12], .bond_gap = v[13], .damping_ratio_shear = v[14]};
+DamageBondLaw DamageBondLaw::from_parameters(const LawParameters& p) {
+  return {.emod = p["emod_pa"], .kratio = p["kratio"], .friction = p["friction"], .damping_ratio_normal = p["damping_ratio_normal"],
+          .bond_emod = p["bond_emod_pa"], .bond_kratio = p["bond_kratio"], .radius_multiplier = p["bond_rmul"], .tensile_strength = p["ten_pa"],
+          .compressive_strength = p["com_pa"], .cohesion = p["coh_pa"], .u_cn = p["ucn_m"], .u_cs = p["ucs_m"], .theta_c = p["theta_c_rad"],
+          .bond_gap = p["bond_gap_m"], .damping_ratio_shear = p["damping_ratio_shear"]};
 }
 
 double DamageBondLaw::damage_from(double opening_p, double slip_p, double bend_p) const noexcept {

@@ -17,7 +17,7 @@ ContactLawSetting mix_contact_laws(const ContactLawSetting& a, const ContactLawS
     if (pa == pb) continue;
     out.values[k] = a.info->parameters[k].upscaling_exponent != 0.0 ? std::sqrt(pa * pb) : 0.5 * (pa + pb);
   }
-  out.law = a.info->make(out.values);
+  out.law = a.info->make(LawParameters(a.info->parameters, out.values));
   return out;
 }
 

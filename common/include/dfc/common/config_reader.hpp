@@ -6,6 +6,13 @@
 // the closest known key instead of a silently ignored setting (CONTRIBUTING.md §6).
 // Errors are ConfigError with the dotted key path and what was expected.
 //
+// A reader attached to a SectionDeclaration (declaration.hpp) takes each key's
+// default, bounds and choices from the declaration: the call names the key
+// only (cfg.number("friction")). Giving a default or bounds at the call as
+// well, or reading a key the declaration lacks, is a bug in the parser and
+// throws std::logic_error (tests/common/declared_parsers_test.cpp runs every
+// shipped scenario through the parsers, so such a bug fails the suite).
+//
 //   ConfigReader cfg(section, "dem");
 //   const double r = cfg.positive("radius_m");            // required, > 0
 //   const double mu = cfg.number("friction", 0.5, {0, 10}); // optional, in [0, 10]
@@ -25,22 +32,26 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dfc/common/declaration.hpp"
 #include "dfc/common/errors.hpp"
 
 namespace dfc {
-
-/// Closed interval [min, max] for numeric settings; either end may be open-ended.
-struct Bounds {
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_exclusive = false;  ///< true: the value must be > min rather than >= min
-};
 
 class ConfigReader {
  public:
   /// `object` must outlive the reader. `path` is the dotted path of `object`
   /// itself within the scenario ("" for the root).
   ConfigReader(const nlohmann::json& object, std::string path);
+  /// A reader whose keys are declared in `declaration` (static storage).
+  ConfigReader(const nlohmann::json& object, std::string path, const SectionDeclaration& declaration);
+
+  /// A reader of the same object that follows `declaration` (static storage).
+  [[nodiscard]] ConfigReader declared_as_section(const SectionDeclaration& declaration) const;
+  /// The declaration this reader follows; nullptr for an undeclared reader.
+  [[nodiscard]] const SectionDeclaration* declaration() const noexcept { return declaration_; }
+  /// The declaration of `key` (in the section or the variant its selector chose);
+  /// std::logic_error when the reader is declared and the key is not; nullptr when undeclared.
+  [[nodiscard]] const ParameterDeclaration* declared(std::string_view key) const;
 
   [[nodiscard]] const std::string& path() const noexcept { return path_; }
   /// Dotted path of `key` inside this object.
@@ -62,6 +73,8 @@ class ConfigReader {
   [[nodiscard]] std::array<double, 3> vec3(std::string_view key);
   [[nodiscard]] std::array<double, 3> vec3(std::string_view key, std::array<double, 3> fallback);
   [[nodiscard]] std::vector<double> numbers(std::string_view key, Bounds bounds = {});
+  /// Declared readers only: [i, j, k] of integers within the declared range.
+  [[nodiscard]] std::array<std::int64_t, 3> integers3(std::string_view key);
 
   // Other scalars -----------------------------------------------------------
   [[nodiscard]] bool boolean(std::string_view key);
@@ -93,20 +106,31 @@ class ConfigReader {
   const nlohmann::json* find(std::string_view key);
   const nlohmann::json& require(std::string_view key, std::string_view expected);
   std::int64_t integer_in(std::string_view key, std::int64_t min_value, std::int64_t max_value);
+  std::int64_t checked_integer(std::string_view key, const nlohmann::json& value, std::int64_t min_value, std::int64_t max_value) const;
   double checked_number(std::string_view key, const nlohmann::json& value, Bounds bounds) const;
+  // Declared readers: the declaration of `key`, checked to be of `type`.
+  const ParameterDeclaration& declared_as(std::string_view key, ValueType type) const;
+  // Declared readers: the value of `key`, its declared default when absent;
+  // ConfigError for an absent required or optional key (never nullptr).
+  const nlohmann::json* declared_value(const ParameterDeclaration& parameter);
+  // Throws std::logic_error if this reader is declared: `call` gives a default
+  // or bounds that belong in the declaration.
+  void undeclared_call(std::string_view key, std::string_view call) const;
+  ConfigReader nested(const nlohmann::json& value, std::string path, const ParameterDeclaration* parameter) const;
 
   const nlohmann::json* object_;
   std::string path_;
+  const SectionDeclaration* declaration_ = nullptr;
+  const SectionDeclaration* variant_keys_ = nullptr;  ///< keys added by the variant the selector chose
   std::set<std::string, std::less<>> known_;
 };
-
-/// "a number in [0, 1]", "a positive number", ...: what `bounds` allow, for messages.
-[[nodiscard]] std::string describe_bounds(Bounds bounds);
 
 /// Most threads a solver section may ask for: more than any machine we run on
 /// has, few enough that the OpenMP runtime can create them.
 inline constexpr std::int64_t kMaxThreads = 1024;
 
+/// The declaration of the key "threads" of a solver section: 0 (the OpenMP default) to kMaxThreads.
+[[nodiscard]] ParameterDeclaration thread_count_declaration();
 /// The optional key "threads" of a solver section: 0 (the OpenMP default) to kMaxThreads.
 [[nodiscard]] int read_thread_count(ConfigReader& section);
 

@@ -14,9 +14,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dfc/common/sections/scenario_sections.hpp"
+
 namespace dfc::coupler {
 
-inline constexpr int kScenarioSchemaVersion = 1;
+inline constexpr int kScenarioSchemaVersion = sections::kScenarioSchemaVersion;
 /// Largest scenario file read: scenarios are a few kB; this refuses a mistaken
 /// path (a data dump) before it is read into memory.
 inline constexpr std::uintmax_t kMaxScenarioBytes = std::uintmax_t(64) << 20;

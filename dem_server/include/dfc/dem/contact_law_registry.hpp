@@ -49,9 +49,9 @@ struct ContactLawInfo {
   std::string summary;         ///< one line
   std::string reference;       ///< where the equations come from
   std::string upscaling_rule;  ///< one sentence: what stays fixed, what scales with S
-  std::vector<ParameterSpec> parameters;
+  std::vector<ParameterDeclaration> parameters;  ///< the law's declaration (dfc/common/sections/dem_contact_laws.hpp)
   std::vector<HistoryColumn> history;
-  ContactLaw (*make)(std::span<const double> values) = nullptr;  ///< values in `parameters` order
+  ContactLaw (*make)(const LawParameters& values) = nullptr;
   std::vector<StiffnessMeaning> stiffness;  ///< one per modulus or stiffness key
   std::vector<RenamedKey> renamed;
 };

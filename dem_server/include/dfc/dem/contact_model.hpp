@@ -10,6 +10,7 @@
 #include <concepts>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -55,17 +56,18 @@ struct StiffnessBound {
   double shear = 0.0;   ///< N/m
 };
 
-/// One parameter of a law: the key in the scenario, its unit, default,
-/// one sentence, its admissible range and how it scales under particle
-/// upscaling by S (value x S^upscaling_exponent; Thakur et al. 2015: contact
-/// stiffness scales linearly with particle size, dimensionless ratios stay fixed).
-struct ParameterSpec {
-  std::string name;
-  std::string unit;
-  std::optional<double> default_value;  ///< nullopt: required
-  std::string sentence;
-  Bounds bounds;
-  double upscaling_exponent = 0.0;
+/// A law's parameter values, in the order of its declaration
+/// (dfc/common/sections/dem_contact_laws.hpp), read by key: laws are built
+/// from named values, never from positions.
+class LawParameters {
+ public:
+  LawParameters(std::span<const ParameterDeclaration> declared, std::span<const double> values);
+  /// The value of `key`; std::logic_error if the law's declaration lacks it.
+  [[nodiscard]] double operator[](std::string_view key) const;
+
+ private:
+  std::span<const ParameterDeclaration> declared_;
+  std::span<const double> values_;
 };
 
 /// One column of per-contact history (e.g. the x component of the shear force).

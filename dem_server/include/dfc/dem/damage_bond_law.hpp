@@ -79,9 +79,8 @@ struct DamageBondLaw {
   double bond_gap = 0.0;              ///< m
   double damping_ratio_shear = 0.0;   ///< - (linear contact; linear_law.hpp: cut while it slides)
 
-  [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
   [[nodiscard]] static std::vector<HistoryColumn> history_columns();
-  [[nodiscard]] static DamageBondLaw from_parameters(std::span<const double> values);
+  [[nodiscard]] static DamageBondLaw from_parameters(const LawParameters& values);
 
   [[nodiscard]] StiffnessBound stiffness_bound(double radius_max) const noexcept {
     const double kn = deformability_kn_bound(emod, radius_max);

@@ -44,10 +44,8 @@ struct LinearLaw {
   double damping_ratio_normal = 0.0;  ///< - (fraction of critical)
   double damping_ratio_shear = 0.0;   ///< - (fraction of critical)
 
-  /// Parameter table in the order `from_parameters` expects.
-  [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
   [[nodiscard]] static std::vector<HistoryColumn> history_columns();
-  [[nodiscard]] static LinearLaw from_parameters(std::span<const double> values);
+  [[nodiscard]] static LinearLaw from_parameters(const LawParameters& values);
 
   [[nodiscard]] StiffnessBound stiffness_bound(double /*radius_max*/) const noexcept { return {kn, ks}; }
 

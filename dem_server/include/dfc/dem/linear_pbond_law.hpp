@@ -53,9 +53,8 @@ struct LinearPbondLaw {
   double bond_gap = 0.0;              ///< m, pairs with a surface gap <= this are bonded at start
   double damping_ratio_shear = 0.0;   ///< - (linear part)
 
-  [[nodiscard]] static std::vector<ParameterSpec> parameter_specs();
   [[nodiscard]] static std::vector<HistoryColumn> history_columns();
-  [[nodiscard]] static LinearPbondLaw from_parameters(std::span<const double> values);
+  [[nodiscard]] static LinearPbondLaw from_parameters(const LawParameters& values);
 
   [[nodiscard]] StiffnessBound stiffness_bound(double radius_max) const noexcept {
     const double kn = deformability_kn_bound(emod, radius_max);

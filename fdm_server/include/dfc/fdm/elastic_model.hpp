@@ -4,7 +4,6 @@
 #include <memory>
 
 #include "dfc/fdm/constitutive_model.hpp"
-#include "dfc/fdm/model_parameter.hpp"
 
 namespace dfc {
 class ConfigReader;
@@ -12,17 +11,9 @@ class ConfigReader;
 
 namespace dfc::fdm {
 
-/// The elastic parameters every model of the registry reads (E and ν, or K and G).
-inline constexpr std::array<ModelParameter, 4> kElasticParameters = {{
-    {"young_modulus_pa", "Pa", "Young's modulus E > 0; give it with poisson_ratio"},
-    {"poisson_ratio", "-", "Poisson's ratio nu in (-1, 0.5); give it with young_modulus_pa"},
-    {"bulk_modulus_pa", "Pa", "bulk modulus K > 0; alternative to E/nu, give it with shear_modulus_pa"},
-    {"shear_modulus_pa", "Pa", "shear modulus G > 0; give it with bulk_modulus_pa"},
-}};
-
 /// K = E/(3(1−2ν)), G = E/(2(1+ν)).
 [[nodiscard]] ElasticModuli moduli_from_young_poisson(double young_modulus, double poisson_ratio);
-/// Reads kElasticParameters from a material object (either pair, not both).
+/// Reads E and nu, or K and G, from a material object (either pair, not both; declared in dfc/common/sections/fdm_sections.hpp).
 [[nodiscard]] ElasticModuli read_elastic_moduli(ConfigReader& material);
 /// Hooke's law in increments: Δσ = 2G dev(Δε) + K tr(Δε) I (tension positive).
 [[nodiscard]] Stress elastic_stress_increment(const ElasticModuli& moduli, const SymTensor& strain_increment);
@@ -31,7 +22,6 @@ class ElasticModel final : public ConstitutiveModel {
  public:
   static constexpr std::string_view kKeyword = "elastic";
   static constexpr std::string_view kSummary = "isotropic linear elasticity (give E and nu, or K and G)";
-  static constexpr const std::array<ModelParameter, 4>& kParameters = kElasticParameters;
 
   explicit ElasticModel(ElasticModuli moduli);
   [[nodiscard]] static ElasticModel from_young_poisson(double young_modulus, double poisson_ratio);

@@ -8,14 +8,14 @@
 #include <optional>
 #include <string>
 
+#include "dfc/common/sections/fdm_sections.hpp"
 #include "dfc/fdm/mesh.hpp"
 
 namespace dfc::fdm {
 
 /// Default limit of the zone aspect ratio (longest/shortest edge) for the
-/// cavity meshes: FLAC practice keeps zones within about 1:5 where accuracy
-/// matters; 10 leaves room for the outer, less important zones.
-inline constexpr double kDefaultMaxAspectRatio = 10.0;
+/// cavity meshes, declared with the key max_aspect_ratio.
+inline constexpr double kDefaultMaxAspectRatio = sections::kDefaultMaxAspectRatio;
 
 /// Axis-aligned box [origin, origin + size]. Face groups "xmin" … "zmax".
 struct BoxSpec {

@@ -17,13 +17,6 @@ class MohrCoulombModel final : public ConstitutiveModel {
   static constexpr std::string_view kKeyword = "mohr_coulomb";
   static constexpr std::string_view kSummary =
       "Mohr-Coulomb shear yield with non-associated flow and a tension cut-off, perfectly plastic (FLAC3D form)";
-  static constexpr std::array<ModelParameter, 4> kStrengthParameters = {{
-      {"cohesion_pa", "Pa", "cohesion c >= 0"},
-      {"friction_angle_deg", "deg", "friction angle phi in [0, 90)"},
-      {"dilation_angle_deg", "deg", "dilation angle psi in [0, phi] (0 = no plastic volume change); default 0"},
-      {"tensile_strength_pa", "Pa", "tension cut-off sigma_t >= 0, capped at the apex c/tan(phi)"},
-  }};
-  static constexpr auto kParameters = join_parameters(kElasticParameters, kStrengthParameters);
   /// History per tetrahedron (state_names order).
   enum StateIndex : std::size_t { kPlasticShearStrain = 0, kPlasticTensileStrain = 1, kFailureNow = 2, kStateSize = 3 };
 

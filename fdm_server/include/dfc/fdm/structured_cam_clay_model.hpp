@@ -18,18 +18,6 @@ class StructuredCamClayModel final : public ConstitutiveModel {
   static constexpr std::string_view kKeyword = "structured_cam_clay";
   static constexpr std::string_view kSummary =
       "bonded Modified Cam Clay (Ciantia et al. 2024: p_s, p_t, M_f yield, M_g potential, hardening/debonding rho, xi); linear elasticity";
-  static constexpr std::array<ModelParameter, 9> kPlasticParameters = {{
-      {"ps0_pa", "Pa", "initial p_s, preconsolidation of the unbonded material, > 0 (raised to the initial stress if that lies outside)"},
-      {"pt0_pa", "Pa", "initial p_t, bonding (isotropic tensile strength), >= 0"},
-      {"mf", "-", "M_f, slope controlling the yield-surface shape, > 0"},
-      {"mg", "-", "M_g, slope of the plastic potential, > 0; default mf (associated flow)"},
-      {"rho_s", "-", "rho_s, rate of p_s hardening: dp_s = rho_s p_s (d eps_v^p + xi_s d eps_q^p); default 0"},
-      {"rho_t", "-", "rho_t, rate of debonding: dp_t = -rho_t p_t (|d eps_v^p| + xi_t d eps_q^p); default 0"},
-      {"xi_s", "-", "xi_s, weight of deviatoric plastic strain in the p_s law; default 0"},
-      {"xi_t", "-", "xi_t, weight of deviatoric plastic strain in the p_t law; default 0"},
-      {"k", "-", "k of p_c = p_s + (1+k) p_t (Kratos KSIM; not in Ciantia et al. 2024 Table 2), >= 0; default 0"},
-  }};
-  static constexpr auto kParameters = join_parameters(kElasticParameters, kPlasticParameters);
   /// History per tetrahedron (state_names order).
   enum StateIndex : std::size_t { kPs = 0, kPt = 1, kPlasticVolumetricStrain = 2, kPlasticDeviatoricStrain = 3, kStateSize = 4 };
 
