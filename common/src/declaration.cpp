@@ -1,6 +1,7 @@
 #include "dfc/common/declaration.hpp"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 namespace dfc {
@@ -72,9 +73,14 @@ std::string bounds_text(const ParameterDeclaration& p) {
   }
 }
 
-void describe_into(std::ostringstream& out, const SectionDeclaration& section, int indent);
+// Sections already listed in this text: a section used under several keys
+// (the contact law under contact, wall_contact, walls[].contact, pile.contact)
+// is listed once and named where it recurs.
+using Described = std::set<const SectionDeclaration*>;
 
-void describe_parameter(std::ostringstream& out, const ParameterDeclaration& p, int indent) {
+void describe_into(std::ostringstream& out, const SectionDeclaration& section, int indent, Described& described);
+
+void describe_parameter(std::ostringstream& out, const ParameterDeclaration& p, int indent, Described& described) {
   const std::string pad(std::size_t(indent), ' ');
   out << pad << p.key;
   if (!p.unit.empty()) out << " [" << p.unit << "]";
@@ -84,19 +90,22 @@ void describe_parameter(std::ostringstream& out, const ParameterDeclaration& p, 
   if (!p.doc.empty()) out << ": " << p.doc;
   if (!p.upscaling.empty()) out << " (upscaling: " << p.upscaling << ")";
   out << "\n";
-  if ((p.type == ValueType::object || p.type == ValueType::objects) && p.section != nullptr) describe_into(out, *p.section, indent + 4);
+  if ((p.type == ValueType::object || p.type == ValueType::objects) && p.section != nullptr) {
+    if (described.insert(p.section).second) describe_into(out, *p.section, indent + 4, described);
+    else out << pad << "    (the keys of " << p.section->name << ", listed above)\n";
+  }
 }
 
-void describe_into(std::ostringstream& out, const SectionDeclaration& section, int indent) {
+void describe_into(std::ostringstream& out, const SectionDeclaration& section, int indent, Described& described) {
   const std::string pad(std::size_t(indent), ' ');
   for (const auto& p : section.parameters) {
-    describe_parameter(out, p, indent);
+    describe_parameter(out, p, indent, described);
     if (p.key != section.selector) continue;
     for (const auto& variant : section.variants) {
       out << pad << "    " << section.selector << " \"" << variant.value << "\"";
       if (!variant.doc.empty()) out << ": " << variant.doc;
       out << "\n";
-      if (variant.keys != nullptr) describe_into(out, *variant.keys, indent + 8);
+      if (variant.keys != nullptr) describe_into(out, *variant.keys, indent + 8, described);
     }
   }
 }
@@ -222,7 +231,8 @@ std::string describe_presence(const ParameterDeclaration& parameter) {
 
 std::string describe_section(const SectionDeclaration& section, int indent) {
   std::ostringstream out;
-  describe_into(out, section, indent);
+  Described described{&section};
+  describe_into(out, section, indent, described);
   return out.str();
 }
 

@@ -10,5 +10,6 @@ int main(int argc, char** argv) {
   return dfc::protocol::run_server_main(
       argc, argv,
       {"fdm_server", "explicit Lagrangian finite-difference continuum (FLAC3D-style, small strain) for DEM-FDM coupling",
-       dfc::fdm::fdm_config_help(), [] { return std::make_unique<dfc::fdm::FdmBackend>(); }});
+       dfc::fdm::fdm_config_help(), [] { return std::make_unique<dfc::fdm::FdmBackend>(); },
+       [](const nlohmann::json& section) { (void)dfc::fdm::load_fdm_model(section); }});
 }

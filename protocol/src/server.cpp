@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 #include <string_view>
 
 #include "dfc/common/command_line.hpp"
 #include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/common/json_text.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/server_session.hpp"
 #include "dfc/protocol/transport.hpp"
@@ -30,6 +33,7 @@ struct ServerOptions {
 void print_help(const ServerProgram& program) {
   std::cout << program.name << " — " << program.summary << "\n\n"
             << "Usage: " << program.name << " [--bind ENDPOINT] [--idle-timeout SECONDS] [--max-array-bytes N]\n"
+            << (program.check_config ? "       " + program.name + " --check-config FILE.json\n" : std::string())
             << "       " << program.name << " --help | --version\n\n"
             << "A protocol v" << version_string() << " server (see protocol/SPEC.md). It binds a ZeroMQ ROUTER socket,\n"
             << "prints one line 'DFC-LISTENING <endpoint>' on stdout, and serves one client\n"
@@ -38,9 +42,25 @@ void print_help(const ServerProgram& program) {
             << "  --bind ENDPOINT        where to listen (default tcp://127.0.0.1:* = loopback, any free port)\n"
             << "  --idle-timeout S       exit with status 3 after S seconds without any message (default 3600; 0 = never)\n"
             << "  --max-array-bytes N    largest array frame accepted (default 268435456)\n"
+            << (program.check_config ? "  --check-config FILE    read FILE (a configure section, the scenario's participants.<name>.config) as\n"
+                                       "                         configure would, without building the model; exit 0 if valid, 2 naming the key if not\n"
+                                     : "")
             << "  --help                 this text;  --version  solver and protocol versions\n\n"
             << "Configure section (the scenario part the coupler sends in 'configure'):\n"
             << program.config_help << "\n";
+}
+
+// --check-config FILE: the configure section in FILE through the program's
+// parser (a ConfigError reaches run_server_main: exit 2 naming the key).
+void check_config_file(const ServerProgram& program, const std::string& path) {
+  if (!program.check_config) throw UserError(program.name + " has no --check-config");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError("cannot read '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const nlohmann::json section = parse_json_text(text.str(), JsonTextLimits{.reject_duplicate_keys = true});
+  program.check_config(section);
+  std::cout << path << ": a valid " << program.name << " configure section\n";
 }
 
 // Parses argv; returns an exit status if the program should stop now.
@@ -57,6 +77,10 @@ std::optional<int> parse_options(int argc, char** argv, const ServerProgram& pro
     }
     if (arg == "--version") {
       std::cout << program.name << " " << project_version() << " (protocol " << version_string() << ")\n";
+      return 0;
+    }
+    if (arg == "--check-config") {
+      check_config_file(program, value());
       return 0;
     }
     if (arg == "--bind") options.bind = value();

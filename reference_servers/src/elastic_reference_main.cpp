@@ -18,5 +18,6 @@ int main(int argc, char** argv) {
        "reaches it over the advance. damping, mass_scaling and threads are validated and ignored:\n"
        "there is no time integration (quasi-static, no inertia, no plasticity).\n\n" +
            dfc::fdm::fdm_config_help(),
-       [] { return std::make_unique<dfc::reference::ElasticReferenceBackend>(); }});
+       [] { return std::make_unique<dfc::reference::ElasticReferenceBackend>(); },
+       [](const nlohmann::json& section) { (void)dfc::fdm::load_fdm_model(section); }});
 }

@@ -13,5 +13,6 @@ int main(int argc, char** argv) {
        "The same section as fdm_server (only mesh and coupling.group matter; the rest is\n"
        "validated and ignored, so a scenario swaps continua by changing `program`):\n\n" +
            dfc::fdm::fdm_config_help(),
-       [] { return std::make_unique<dfc::reference::RigidContinuumBackend>(); }});
+       [] { return std::make_unique<dfc::reference::RigidContinuumBackend>(); },
+       [](const nlohmann::json& section) { (void)dfc::fdm::load_fdm_model(section); }});
 }

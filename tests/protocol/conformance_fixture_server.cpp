@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
       "conformance_fixture_server",
       "a trivial provides_interface continuum for testing dfc_conformance (--break MODE breaks it on purpose)",
       "  side   integer >= 2, default 2: the interface is a side x side grid of nodes 1 m apart in z = 0",
-      [breakage] { return std::make_unique<dfc::protocol::testing::FixtureBackend>(breakage); }};
+      [breakage] { return std::make_unique<dfc::protocol::testing::FixtureBackend>(breakage); },
+      {}};
   return dfc::protocol::run_server_main(static_cast<int>(server_args.size() - 1), server_args.data(), program);
 }

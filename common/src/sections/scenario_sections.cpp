@@ -3,6 +3,7 @@
 
 #include "dfc/common/durations.hpp"
 #include "dfc/common/json_schema.hpp"
+#include "dfc/common/sections/dem_sections.hpp"
 #include "dfc/common/sections/fdm_sections.hpp"
 
 namespace dfc::sections {
@@ -151,6 +152,7 @@ nlohmann::json scenario_schema() {
                                {"then", {{"properties", {{"config", {{"$ref", "#/$defs/" + section.name}}}}}}}});
   };
   add_server("fdm_server", fdm_server());
+  add_server("dem_server", dem_server());
   json& participant = defs[scenario_participant().name];
   participant["allOf"] = server_sections;
   participant["properties"]["config"]["properties"] = {{"gravity_m_s2", false}};

@@ -8,35 +8,37 @@ namespace dfc::dem {
 
 namespace {
 
-std::size_t read_axis(ConfigReader& cfg, std::string_view key) {
-  const std::string a = cfg.choice(key, {"x", "y", "z"}, "z");
+std::size_t read_axis(ConfigReader& cfg) {
+  const std::string a = cfg.string("axis");
   return a == "x" ? 0 : a == "y" ? 1 : 2;
 }
 
-CellLoading read_loading(ConfigReader& cfg, const std::vector<std::string>& modes) {
+// The modes a section allows are its declaration's (dem.periodic.consolidation,
+// dem.periodic.loading); each mode's keys are those of its variant.
+CellLoading read_loading(ConfigReader& cfg) {
   CellLoading l;
-  const std::string mode = cfg.choice("mode", modes);
+  const std::string mode = cfg.string("mode");
   if (mode == "none") l.mode = CellLoading::Mode::none;
   if (mode == "isotropic") {
     l.mode = CellLoading::Mode::isotropic;
-    l.stress = cfg.positive("stress_pa");
+    l.stress = cfg.number("stress_pa");
   }
   if (mode == "k0") {
     l.mode = CellLoading::Mode::k0;
-    l.stress = cfg.positive("stress_pa");
-    l.axis = read_axis(cfg, "axis");
+    l.stress = cfg.number("stress_pa");
+    l.axis = read_axis(cfg);
   }
   if (mode == "anisotropic") {
     l.mode = CellLoading::Mode::anisotropic;
-    l.stress = cfg.positive("stress_pa");
-    l.axis = read_axis(cfg, "axis");
-    l.lateral_ratio = cfg.positive("lateral_ratio");
+    l.stress = cfg.number("stress_pa");
+    l.axis = read_axis(cfg);
+    l.lateral_ratio = cfg.number("lateral_ratio");
   }
   if (mode == "triaxial") {
     l.mode = CellLoading::Mode::triaxial;
-    l.stress = cfg.number("stress_pa", Bounds{0.0});  // 0: unconfined (UCS of an REV)
-    l.axial_rate = cfg.positive("axial_strain_rate_per_s");
-    l.axis = read_axis(cfg, "axis");
+    l.stress = cfg.number("stress_pa");  // 0: unconfined (UCS of an REV)
+    l.axial_rate = cfg.number("axial_strain_rate_per_s");
+    l.axis = read_axis(cfg);
   }
   if (mode == "strain_rate") {
     l.mode = CellLoading::Mode::strain_rate;
@@ -49,8 +51,8 @@ CellLoading read_loading(ConfigReader& cfg, const std::vector<std::string>& mode
 }  // namespace
 
 void read_servo(ConfigReader servo, PeriodicConfig& c) {
-  c.servo_gain = servo.number("gain", 0.5, Bounds{0.0, 1.0, true});
-  if (servo.has("max_strain_rate_per_s")) c.max_strain_rate = servo.positive("max_strain_rate_per_s");
+  c.servo_gain = servo.number("gain");
+  if (servo.has("max_strain_rate_per_s")) c.max_strain_rate = servo.number("max_strain_rate_per_s");
   else servo.accept("max_strain_rate_per_s");
   servo.finish();
 }
@@ -62,7 +64,7 @@ PeriodicConfig read_periodic_config(ConfigReader cfg) {
   c.cell.lo = {lo[0], lo[1], lo[2]};
   c.cell.hi = {hi[0], hi[1], hi[2]};
   if (!(hi[0] > lo[0] && hi[1] > lo[1] && hi[2] > lo[2])) cfg.fail("max_m", "every component must exceed the one of min_m");
-  const std::string axes = cfg.string("axes", "xyz");
+  const std::string axes = cfg.string("axes");
   c.cell.periodic = {false, false, false};
   for (const char a : axes) {
     if (a != 'x' && a != 'y' && a != 'z') cfg.fail("axes", "use the letters x, y and z only, e.g. \"xyz\" or \"xy\" (a floor wall closes z)");
@@ -73,13 +75,13 @@ PeriodicConfig read_periodic_config(ConfigReader cfg) {
   if (auto cons = cfg.optional_child("consolidation")) {
     ConfigReader& r = *cons;
     ConsolidationSpec s;
-    s.loading = read_loading(r, {"isotropic", "k0", "anisotropic"});
+    s.loading = read_loading(r);
     static_cast<EquilibriumTarget&>(s) = read_equilibrium_target(r);
     r.finish();
     c.consolidation = s;
   }
   if (auto loading = cfg.optional_child("loading")) {
-    c.loading = read_loading(*loading, {"none", "isotropic", "k0", "anisotropic", "triaxial", "strain_rate"});
+    c.loading = read_loading(*loading);
     loading->finish();
   }
   cfg.finish();
@@ -88,15 +90,15 @@ PeriodicConfig read_periodic_config(ConfigReader cfg) {
 
 RadiusExpansionSpec read_radius_expansion(ConfigReader& cfg) {
   RadiusExpansionSpec s;
-  s.radius_min = cfg.positive("radius_min_m");
-  s.radius_max = cfg.positive("radius_max_m");
+  s.radius_min = cfg.number("radius_min_m");
+  s.radius_max = cfg.number("radius_max_m");
   if (s.radius_max < s.radius_min) cfg.fail("radius_max_m", "must be at least radius_min_m");
-  s.porosity = cfg.number("porosity", Bounds{0.0, 1.0, true});
-  if (!(s.porosity > 0.0)) cfg.fail("porosity", "must be in (0, 1)");
-  s.multiplier = cfg.number("multiplier", 1.6, Bounds{1.0, 10.0});
-  s.stages = int(cfg.integer("stages", 10, 1));
-  s.relax_steps = cfg.integer("relax_steps", 1000, 0);
-  s.seed = std::uint64_t(cfg.integer("seed", 1, 0));
+  s.porosity = cfg.number("porosity");
+  if (!(s.porosity < 1.0)) cfg.fail("porosity", "must be in (0, 1): a porosity of 1 leaves no solid");
+  s.multiplier = cfg.number("multiplier");
+  s.stages = int(cfg.integer("stages"));
+  s.relax_steps = cfg.integer("relax_steps");
+  s.seed = std::uint64_t(cfg.integer("seed"));
   return s;
 }
 
@@ -132,26 +134,6 @@ CellServo make_servo(const CellLoading& l, double gain, double max_strain_rate) 
     case CellLoading::Mode::none: break;
   }
   return CellServo{.gain = gain, .max_strain_rate = max_strain_rate};  // every edge at rate 0
-}
-
-std::string periodic_config_help() {
-  return R"(  periodic        periodic (REV) cell, docs/dem_periodic.md:
-                  {"min_m":[x,y,z], "max_m":[x,y,z] (required; each periodic edge >= 2 (2 r_max + skin)),
-                   "axes":"xyz" (periodic axes; e.g. "xy" with a floor wall at z),
-                   "servo":{"gain":0.5 (fraction of the stress error removed per step for an affine response, (0,1]),
-                            "max_strain_rate_per_s" (cap of a stress-controlled edge; default 1e-4 / dt)},
-                   "consolidation" (preparation, before the coupled run; bonds are installed after it):
-                     {"mode":"isotropic"|"k0"|"anisotropic", "stress_pa" (p, or sigma_v on "axis":"z"),
-                      "lateral_ratio" (anisotropic: the two other edges held at lateral_ratio x stress_pa), "tolerance":0.01 (relative
-                      stress error), "unbalanced_force_ratio":0.01, "max_steps":200000, "check_every":100},
-                   "loading" (during advance): {"mode":"none"|"isotropic"|"k0"|"anisotropic"|"triaxial"|"strain_rate",
-                     "stress_pa" (p, sigma_v, or sigma_3 of triaxial: 0 = unconfined), "axis":"z" (k0, triaxial),
-                     "axial_strain_rate_per_s" (triaxial: compression > 0), "strain_rate_per_s":[x,y,z] (strain_rate:
-                     edge rates, extension positive)}}
-                  adds the monitors cell_stress_xx/yy/zz_pa (Love-Weber over particle contacts, compression
-                  positive, averaged over the advance), cell_strain_xx/yy/zz (engineering, (L0 - L)/L0 from the
-                  end of preparation, compression positive), porosity (1 - sphere volume / cell volume)
-)";
 }
 
 }  // namespace dfc::dem

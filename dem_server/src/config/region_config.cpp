@@ -7,18 +7,14 @@ Vec3 to_vec3(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
 }  // namespace
 
 std::array<double, 2> read_xy(ConfigReader& cfg, std::string_view key) {
-  if (!cfg.has(key)) {
-    cfg.accept(key);
-    return {0.0, 0.0};
-  }
-  const auto v = cfg.numbers(key);
+  const auto v = cfg.numbers(key);  // declared with its default [0, 0]
   if (v.size() != 2) cfg.fail(key, "expected an array of 2 numbers [x, y]");
   return {v[0], v[1]};
 }
 
 BedRegion read_region(ConfigReader cfg) {
   BedRegion region;
-  const std::string type = cfg.choice("type", {"box", "cylinder"});
+  const std::string type = cfg.string("type");
   if (type == "box") {
     region.shape = BedRegion::Shape::box;
     region.min = to_vec3(cfg.vec3("min_m"));
@@ -30,7 +26,7 @@ BedRegion read_region(ConfigReader cfg) {
     const auto axis = read_xy(cfg, "axis_xy_m");
     region.axis_x = axis[0];
     region.axis_y = axis[1];
-    region.radius = cfg.positive("radius_m");
+    region.radius = cfg.number("radius_m");
     region.z_min = cfg.number("z_min_m");
     region.z_max = cfg.number("z_max_m");
     if (!(region.z_max > region.z_min)) cfg.fail("z_max_m", "must exceed z_min_m");

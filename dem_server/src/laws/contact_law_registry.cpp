@@ -147,9 +147,11 @@ void ContactLawSetting::add_bond_load(double* history, const ContactKinematics& 
       law);
 }
 
-ContactLawSetting read_contact_law(ConfigReader given) {
+ContactLawSetting read_contact_law(ConfigReader section) {
   // A law's key that another law reads with another meaning: refused by name
-  // before the declared reader would call it merely unknown.
+  // before the declared reader would call it merely unknown (an undeclared
+  // reader of the same object, whatever `section` follows).
+  ConfigReader given(section.object(), section.path());
   const std::string given_keyword = given.has("law") ? given.string("law") : std::string(LinearLaw::keyword);
   if (const ContactLawInfo* given_info = find_contact_law(given_keyword))
     for (const auto& old : given_info->renamed)
@@ -158,7 +160,7 @@ ContactLawSetting read_contact_law(ConfigReader given) {
                                 old.renamed_to + "\" (same value, same results)");
   if (find_contact_law(given_keyword) == nullptr)
     given.fail("law", "unknown contact law \"" + given_keyword + "\"; the registry has " + registry_keywords());
-  ConfigReader cfg = given.declared_as_section(sections::dem_contact());
+  ConfigReader cfg = section.declared_as_section(sections::dem_contact());
   const std::string keyword = cfg.string("law");
   const ContactLawInfo* info = find_contact_law(keyword);
   if (info == nullptr) cfg.fail("law", "unknown contact law \"" + keyword + "\"; the registry has " + registry_keywords());

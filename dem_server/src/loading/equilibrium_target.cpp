@@ -6,10 +6,11 @@ namespace dfc::dem {
 
 EquilibriumTarget read_equilibrium_target(ConfigReader& cfg) {
   EquilibriumTarget t;
-  t.tolerance = cfg.number("tolerance", 0.01, Bounds{0.0, 1.0, true});
-  t.unbalanced_force_ratio = cfg.number("unbalanced_force_ratio", 0.01, Bounds{0.0, 1.0, true});
-  t.max_steps = cfg.integer("max_steps", 200000, 1);
-  t.check_every = cfg.integer("check_every", 100, 1);
+  // Defaults and bounds: the declaration (dfc/common/sections/dem_sections.cpp, equilibrium_target_keys).
+  t.tolerance = cfg.number("tolerance");
+  t.unbalanced_force_ratio = cfg.number("unbalanced_force_ratio");
+  t.max_steps = cfg.integer("max_steps");
+  t.check_every = cfg.integer("check_every");
   return t;
 }
 

@@ -54,6 +54,8 @@ class ConfigReader {
   [[nodiscard]] const ParameterDeclaration* declared(std::string_view key) const;
 
   [[nodiscard]] const std::string& path() const noexcept { return path_; }
+  /// The object this reader reads.
+  [[nodiscard]] const nlohmann::json& object() const noexcept { return *object_; }
   /// Dotted path of `key` inside this object.
   [[nodiscard]] std::string key_path(std::string_view key) const;
   [[nodiscard]] bool has(std::string_view key) const;

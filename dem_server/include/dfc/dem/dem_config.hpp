@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dfc/common/sections/dem_sections.hpp"
 #include "dfc/dem/bed_generator.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/equilibrium_target.hpp"
@@ -99,7 +100,7 @@ struct DemConfig {
   /// S of pcrm zones 1, 2, ...; empty without zones.
   std::vector<ContactLawSetting> material_laws;
   ContactLawSetting wall_contact;  ///< particle–wall default, and the coupling wall
-  double local_damping = 0.7;
+  double local_damping = sections::kDefaultLocalDamping;  ///< alpha, damping.local
   TimestepConfig timestep;
   Vec3 gravity;                    ///< m/s^2
   double skin = 0.0;               ///< m; 0: automatic (0.2 r_max)

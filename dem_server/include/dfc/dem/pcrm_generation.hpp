@@ -36,8 +36,6 @@ struct PcrmConfig {
 /// REV's timestep fraction is the model builder's to set.
 [[nodiscard]] PcrmConfig read_pcrm(ConfigReader& particles, double scale_factor, double density);
 
-/// The "pcrm" part of dem_config_help().
-[[nodiscard]] std::string pcrm_help();
 
 struct GeneratedBody {
   ReplicatedBody body;

@@ -56,7 +56,5 @@ void check_periodic_width(const PeriodicConfig& config, double r_max, double rea
 /// The servo that realises a loading (none: every edge fixed).
 [[nodiscard]] CellServo make_servo(const CellLoading& loading, double gain, double max_strain_rate);
 
-/// The part of dem_config_help() for these keys.
-[[nodiscard]] std::string periodic_config_help();
 
 }  // namespace dfc::dem

@@ -10,10 +10,11 @@
 
 namespace dfc::dem {
 
-/// Reads an optional [x, y] (default [0, 0]).
+/// Reads an [x, y] pair of a declared section (dfc/common/sections/dem_sections.hpp).
 [[nodiscard]] std::array<double, 2> read_xy(ConfigReader& cfg, std::string_view key);
 
-/// {"type":"box", "min_m", "max_m"} or {"type":"cylinder", "radius_m", "z_min_m", "z_max_m", "axis_xy_m"}; finishes cfg.
+/// {"type":"box", "min_m", "max_m"} or {"type":"cylinder", "radius_m", "z_min_m", "z_max_m", "axis_xy_m"}
+/// (declared: dem.region); finishes cfg.
 [[nodiscard]] BedRegion read_region(ConfigReader cfg);
 
 /// m, the axis-aligned box around a region (lower, upper corner).

@@ -34,6 +34,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "dfc/common/sections/dem_sections.hpp"
 #include "dfc/dem/bond_state.hpp"
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/contact_lists.hpp"
@@ -53,7 +54,7 @@ namespace dfc::dem {
 struct SimulationSettings {
   ContactLawSetting particle_law;  ///< particle–particle contacts (material 0)
   Vec3 gravity;                    ///< m/s^2 (already N g in a centrifuge)
-  double local_damping = 0.7;      ///< alpha of local damping, [0, 1)
+  double local_damping = sections::kDefaultLocalDamping;  ///< alpha of local damping, [0, 1)
   double skin = 0.0;               ///< m, Verlet skin; <= 0: 0.2 x the largest radius
   int threads = 0;                 ///< OpenMP threads; <= 0: the OpenMP default
   bool install_bonds_at_start = true;  ///< bonded laws: bond at the first rebuild (false: wait for install_bonds_now)
