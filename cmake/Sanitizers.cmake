@@ -29,3 +29,17 @@ if(DFC_SANITIZE)
   add_link_options(${DFC_SANITIZER_FLAGS})
   message(STATUS "DFC_SANITIZE: every target built with ${DFC_SANITIZER_FLAGS}")
 endif()
+
+# Test time limits: AddressSanitizer makes the solvers several times slower
+# (the FDM verification problems took over 120 s under it, 20-40 s without),
+# so every ctest TIMEOUT is multiplied by DFC_TEST_TIMEOUT_SCALE:
+#   dfc_test_timeout(OUT_VARIABLE SECONDS)
+if(DFC_SANITIZE)
+  set(DFC_TEST_TIMEOUT_SCALE 4)
+else()
+  set(DFC_TEST_TIMEOUT_SCALE 1)
+endif()
+function(dfc_test_timeout out seconds)
+  math(EXPR scaled "${seconds} * ${DFC_TEST_TIMEOUT_SCALE}")
+  set(${out} ${scaled} PARENT_SCOPE)
+endfunction()
