@@ -10,8 +10,9 @@
 // default, bounds and choices from the declaration: the call names the key
 // only (cfg.number("friction")). Giving a default or bounds at the call as
 // well, or reading a key the declaration lacks, is a bug in the parser and
-// throws std::logic_error (tests/common/declared_parsers_test.cpp runs every
-// shipped scenario through the parsers, so such a bug fails the suite).
+// throws std::logic_error (the test python.scenario_schema runs every server
+// section of every shipped scenario through its parser with
+// `<server> --check-config`, so such a bug fails the suite).
 //
 //   ConfigReader cfg(section, "dem");
 //   const double r = cfg.positive("radius_m");            // required, > 0
