@@ -18,7 +18,8 @@ struct CommandResult {
 
 /// Starts `argv` with stdout+stderr to a temporary file; returns its pid.
 pid_t start_command(const std::vector<std::string>& argv, const std::filesystem::path& output_file);
-/// Waits for `pid` up to `timeout` (SIGKILL after that); returns the status as in CommandResult.
+/// Waits for `pid` up to `timeout` x DFC_TEST_TIMEOUT_SCALE (4 in the sanitized build, else 1; SIGKILL
+/// after that); returns the status as in CommandResult. run_command waits the same way.
 int wait_command(pid_t pid, std::chrono::milliseconds timeout);
 /// start + wait + read the output.
 CommandResult run_command(const std::vector<std::string>& argv, std::chrono::milliseconds timeout);
