@@ -31,6 +31,7 @@ Exit 0 after writing, 3 when RESULTS_DIR holds no open-pile run, 2 on bad input.
 """
 import argparse
 import json
+import math
 import os
 import sys
 
@@ -391,9 +392,9 @@ def main(argv=None):
     with open(os.path.join(out, "summary.json"), "w", encoding="utf-8") as handle:
         json.dump(summary, handle, indent=1, default=float)
     for label, e in summary["runs"].items():
-        forces = ", ".join(f"{k} {v:.1f} N" for k, v in e["force_n"].items())
+        forces = ", ".join(f"{k} {v:.1f} N" if math.isfinite(v) else f"{k} not reached" for k, v in e["force_n"].items())
         print(f"{label}: {forces}; final PLR {e['final_plug_length_ratio']:.2f}, IFR over the last 5 mm {e['ifr_last_5mm']:.2f}; "
-              f"wall time {e['wall_time_s']} s")
+              f"wall time {e['wall_time_s']:.0f} s" if e["wall_time_s"] is not None else "wall time unknown")
     print(f"figures and summary.json in {out}")
     return 0
 
