@@ -281,23 +281,20 @@ def ring_mean(grid, r_edges, z_edges, r_range, z_range):
     return float(np.nanmean(pick)) if np.isfinite(pick).any() else float("nan")
 
 
-def fdm_extrapolated(fdm, radius, z_range):
-    """The FDM's sigma_rr at `radius` inside its innermost zone ring: the means of its first two
-    rings over z_range, at their mid-radii, extrapolated linearly. The zone centres lie half a zone
-    out from the coupling wall, where a stress that decays outwards is already lower, so the ring
-    means alone understate the stress at the wall."""
+def fdm_at_wall(fdm, radius, z_range):
+    """The FDM's sigma_rr at `radius` (the coupling wall) from the means of its first two zone
+    rings over z_range: the axisymmetric elastic form A + B/r^2 (Lame's thick cylinder;
+    Timoshenko & Goodier 1970, docs/theory/fdm.md §2(b)) fitted to the two means as ring
+    averages (the area average of 1/r^2 over r0..r1 is 2 ln(r1/r0) / (r1^2 - r0^2)). The zone
+    centres lie half a zone out from the wall, where a stress that decays outwards is already
+    lower; tests/e2e/open_pile_test.cpp computes the same."""
     r_edges, z_edges, grid = fdm
-    means, centres = [], []
-    for i in range(len(r_edges) - 1):
-        value = ring_mean(grid, r_edges, z_edges, (r_edges[i], r_edges[i + 1]), z_range)
-        if np.isfinite(value):
-            means.append(value)
-            centres.append(0.5 * (r_edges[i] + r_edges[i + 1]))
-        if len(means) == 2:
-            break
-    if len(means) < 2:
+    means = [ring_mean(grid, r_edges, z_edges, (r_edges[i], r_edges[i + 1]), z_range) for i in (0, 1)]
+    if not all(np.isfinite(means)):
         return float("nan")
-    return float(means[0] + (means[0] - means[1]) * (centres[0] - radius) / (centres[1] - centres[0]))
+    inverse_square = [2.0 * np.log(r_edges[i + 1] / r_edges[i]) / (r_edges[i + 1] ** 2 - r_edges[i] ** 2) for i in (0, 1)]
+    b = (means[0] - means[1]) / (inverse_square[0] - inverse_square[1])
+    return float(means[0] - b * inverse_square[0] + b / radius ** 2)
 
 
 def analyse(run, out, figures):
@@ -331,9 +328,6 @@ def analyse(run, out, figures):
                    "far_field": ring_mean(damage, r_edges, z_edges, (r_edges[-1] - 0.25 * d, r_edges[-1]), (z_edges[0], tip - d))},
         "fdm_sigma_rr_pa_next_to_core_at_tip": ring_mean(fdm[2], fdm[0], fdm[1], (r_edges[-1], r_edges[-1] + 0.25 * d), near_tip),
         "dem_sigma_rr_pa_core_edge_at_tip": ring_mean(sigma_rr, r_edges, z_edges, (r_edges[-1] - 0.25 * d, r_edges[-1]), near_tip),
-        # The same radius on both sides: the DEM's outer ring (its cells' centres lie D/16 and 3D/16 inside
-        # the wall) against the FDM extrapolated inwards to the ring's middle.
-        "fdm_sigma_rr_pa_extrapolated_to_core_edge_ring": fdm_extrapolated(fdm, r_edges[-1] - 0.125 * d, near_tip),
         # The same rings over the band within 1 D of the tip's depth (cut at the surface): about 90 of the DEM's
         # coarse grains instead of 30, so that the DEM's ring average is representative (docs/open_pile.md §4).
         "dem_sigma_rr_pa_core_edge_within_1D": ring_mean(sigma_rr, r_edges, z_edges, (r_edges[-1] - 0.25 * d, r_edges[-1]), within_1d),
@@ -342,7 +336,13 @@ def analyse(run, out, figures):
         # per unit wall area, over the same bands. Each side's average above lies up to D/4 away from it.
         "wall_traction_pa_at_tip": band_mean(traction, near_tip),
         "wall_traction_pa_within_1D": band_mean(traction, within_1d),
+        # The FDM's stress field carried to the wall from its first two zone rings (fdm_at_wall): the
+        # FDM's radial stress at the coupling wall, which the issue's check compares with the DEM's (the
+        # traction its particles put on the wall) over the band within 1 D (docs/open_pile.md §6).
+        "fdm_sigma_rr_pa_at_wall_at_tip": fdm_at_wall(fdm, fdm[0][0], near_tip),
+        "fdm_sigma_rr_pa_at_wall_within_1D": fdm_at_wall(fdm, fdm[0][0], within_1d),
     }
+    result["fdm_at_wall_over_wall_traction_within_1D"] = result["fdm_sigma_rr_pa_at_wall_within_1D"] / result["wall_traction_pa_within_1D"]
     if figures:
         plot_section(run, out, "fig2b_radial_stress.png", r_edges, z_edges, sigma_rr,
                      f"$\\sigma_{{rr}}$ at the end (h = {1e3 * np.max(run.h):.1f} mm; {run.label}); FDM beyond the dashed line",
@@ -387,6 +387,7 @@ def main(argv=None):
         "mean_force_n_5_to_20mm": spread([e["mean_force_n_5_to_20mm"] for e in entries]),
         "final_plug_length_ratio": spread([e["final_plug_length_ratio"] for e in entries if e["final_displacement_m"] >= 0.02 - 1e-4]),
         "ifr_last_5mm": spread([e["ifr_last_5mm"] for e in entries]),
+        "fdm_at_wall_over_wall_traction_within_1D": spread([e["fdm_at_wall_over_wall_traction_within_1D"] for e in entries]),
         "wall_time_s": spread([e["wall_time_s"] or float("nan") for e in entries]),
     }
     with open(os.path.join(out, "summary.json"), "w", encoding="utf-8") as handle:
