@@ -68,10 +68,10 @@ const SectionDeclaration& region() {
 // --- stages run to equilibrium and the servo ------------------------------------
 
 std::vector<P> equilibrium_target_keys() {
-  return {P::number("tolerance", "-", "relative stress error at which the stage may end").within(kOpenFraction).fallback(0.01),
-          P::number("unbalanced_force_ratio", "-", "unbalanced-force ratio at which the stage may end").within(kOpenFraction).fallback(0.01),
-          P::integer("max_steps", "most steps the stage may take (the run fails if the target is not met)").integer_within(1).fallback(200000),
-          P::integer("check_every", "steps between two checks of the target").integer_within(1).fallback(100)};
+  return {P::number("tolerance", "-", "relative stress error at which the stage may end").within(kOpenFraction).fallback(kDefaultEquilibriumTolerance),
+          P::number("unbalanced_force_ratio", "-", "unbalanced-force ratio at which the stage may end").within(kOpenFraction).fallback(kDefaultEquilibriumUnbalancedForceRatio),
+          P::integer("max_steps", "most steps the stage may take (the run fails if the target is not met)").integer_within(1).fallback(kDefaultEquilibriumMaxSteps),
+          P::integer("check_every", "steps between two checks of the target").integer_within(1).fallback(kDefaultEquilibriumCheckEvery)};
 }
 
 const SectionDeclaration& equilibrium_target() {
@@ -85,7 +85,7 @@ const SectionDeclaration& servo() {
   static const SectionDeclaration s{
       .name = "dem.servo",
       .doc = "the stress servo of cell edges or walls",
-      .parameters = {P::number("gain", "-", "fraction of the stress error removed per step for an affine response").within(kOpenFraction).fallback(0.5),
+      .parameters = {P::number("gain", "-", "fraction of the stress error removed per step for an affine response").within(kOpenFraction).fallback(kDefaultServoGain),
                      max_strain_rate()},
   };
   return s;
@@ -430,7 +430,7 @@ const SectionDeclaration& timestep() {
       .name = "dem.timestep",
       .doc = "the time step: a fraction of the critical step, or a fixed dt_s (refused above the critical step)",
       .parameters = {P::number("dt_s", "s", "fixed time step").positive().optional("fraction_of_critical x the critical step"),
-                     P::number("fraction_of_critical", "-", "fraction of the critical time step").within(kOpenFraction).fallback(0.2)},
+                     P::number("fraction_of_critical", "-", "fraction of the critical time step").within(kOpenFraction).fallback(kDefaultFractionOfCritical)},
   };
   return s;
 }

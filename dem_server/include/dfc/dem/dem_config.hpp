@@ -82,13 +82,13 @@ struct TriaxialConfig {
   double confining_stress = 0.0;    ///< Pa, sigma_3
   double strain_rate = 0.0;         ///< 1/s, axial, compression positive
   bool seat_walls = true;           ///< move every wall onto the outermost particles (lay_out_model; not after a radius expansion)
-  double servo_gain = 0.5;
+  double servo_gain = sections::kDefaultServoGain;
   std::optional<double> max_strain_rate;  ///< 1/s, cap of a servo-controlled wall pair; default 1e-4 / dt
   EquilibriumTarget confinement;    ///< when the confinement stage is finished
 };
 
 struct TimestepConfig {
-  double fraction_of_critical = 0.2;
+  double fraction_of_critical = sections::kDefaultFractionOfCritical;
   std::optional<double> dt;  ///< s, fixed step instead of a fraction
 };
 

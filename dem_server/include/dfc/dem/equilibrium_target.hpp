@@ -7,15 +7,16 @@
 #include <functional>
 
 #include "dfc/common/config_reader.hpp"
+#include "dfc/common/sections/dem_sections.hpp"
 #include "dfc/dem/simulation.hpp"
 
 namespace dfc::dem {
 
 struct EquilibriumTarget {
-  double tolerance = 0.01;               ///< relative stress error at which the target counts as reached
-  double unbalanced_force_ratio = 0.01;  ///< and the packing as in equilibrium
-  std::int64_t max_steps = 200000;
-  std::int64_t check_every = 100;
+  double tolerance = sections::kDefaultEquilibriumTolerance;  ///< relative stress error at which the target counts as reached
+  double unbalanced_force_ratio = sections::kDefaultEquilibriumUnbalancedForceRatio;  ///< and the packing as in equilibrium
+  std::int64_t max_steps = sections::kDefaultEquilibriumMaxSteps;
+  std::int64_t check_every = sections::kDefaultEquilibriumCheckEvery;
 };
 
 /// Reads "tolerance", "unbalanced_force_ratio", "max_steps", "check_every" (the caller finishes).

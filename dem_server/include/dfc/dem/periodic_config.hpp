@@ -7,6 +7,7 @@
 #include <string>
 
 #include "dfc/common/config_reader.hpp"
+#include "dfc/common/sections/dem_sections.hpp"
 #include "dfc/dem/cell_servo.hpp"
 #include "dfc/dem/equilibrium_target.hpp"
 #include "dfc/dem/periodic_cell.hpp"
@@ -33,7 +34,7 @@ struct ConsolidationSpec : EquilibriumTarget {
 
 struct PeriodicConfig {
   PeriodicCell cell;
-  double servo_gain = 0.5;
+  double servo_gain = sections::kDefaultServoGain;
   std::optional<double> max_strain_rate;      ///< 1/s; default 1e-4 / dt (set by the model builder)
   std::optional<ConsolidationSpec> consolidation;
   CellLoading loading;

@@ -35,10 +35,10 @@ struct RevSpec {
   RadiusExpansionSpec particles;        ///< radii already upscaled
   PeriodicCell cell;                    ///< m, the cell before consolidation (periodic on x, y, z)
   double density = 0.0;                 ///< kg/m3, solid
-  double servo_gain = 0.5;
+  double servo_gain = sections::kDefaultServoGain;
   std::optional<double> max_strain_rate;  ///< 1/s; default 1e-4 / dt
   ConsolidationSpec consolidation;      ///< stopping rule of both servo stages; loading: anisotropic sigma_ref
-  double fraction_of_critical = 0.2;
+  double fraction_of_critical = sections::kDefaultFractionOfCritical;
 };
 
 /// A pair of the REV: local sphere indices (first has the smaller id) and the
