@@ -394,8 +394,8 @@ def main(argv=None):
         json.dump(summary, handle, indent=1, default=float)
     for label, e in summary["runs"].items():
         forces = ", ".join(f"{k} {v:.1f} N" if math.isfinite(v) else f"{k} not reached" for k, v in e["force_n"].items())
-        print(f"{label}: {forces}; final PLR {e['final_plug_length_ratio']:.2f}, IFR over the last 5 mm {e['ifr_last_5mm']:.2f}; "
-              f"wall time {e['wall_time_s']:.0f} s" if e["wall_time_s"] is not None else "wall time unknown")
+        wall = f"wall time {e['wall_time_s']:.0f} s" if e["wall_time_s"] is not None else f"stopped at {1e3 * e['final_displacement_m']:.1f} mm"
+        print(f"{label}: {forces}; final PLR {e['final_plug_length_ratio']:.2f}, IFR over the last 5 mm {e['ifr_last_5mm']:.2f}; {wall}")
     print(f"figures and summary.json in {out}")
     return 0
 
