@@ -181,7 +181,7 @@ TEST(Determinism, AFailedGatheredOnlyStepLeavesMeasurementsReadable) {
   };
   DemModel model = build_model(parse_dem_config(config));
   Simulation& sim = *model.simulation;
-  // The spheres overlap by 0.8 r, beyond max_overlap_fraction: the first step fails.
+  // The spheres overlap by 0.8 r, beyond the default max_overlap_fraction (0.5): the first step fails.
   EXPECT_THROW(sim.step(model.dt, ContactRecord::gathered_only), SolverError);
   EXPECT_FALSE(sim.contact_outputs_complete());
   Measurements m;

@@ -21,6 +21,7 @@
 
 #include <gtest/gtest.h>
 
+#include "dfc/common/sections/dem_sections.hpp"
 #include "dfc/dem/contact_kernels.hpp"
 #include "dfc/dem/linear_law.hpp"
 #include "dfc/dem/linear_pbond_law.hpp"
@@ -127,7 +128,7 @@ PairContacts expect_loop_equals_law_alone(const Law& law, const Prepare& prepare
   const Incidence incidence = build_incidence(p.size(), pairs, {}, {}, 1);
   ContactOutputs out;
   out.resize(pairs.size(), Law::has_couple, Space::periodic ? pairs.size() : 0);
-  evaluate_pair_contacts(law, p, pairs, incidence, out, dt, ContactRecord::complete, 1, space);
+  evaluate_pair_contacts(law, p, pairs, incidence, out, dt, ContactRecord::complete, sections::kDefaultMaxOverlapFraction, 1, space);
 
   std::vector<Vec3> expected_force(p.size());
   std::vector<Vec3> expected_moment(p.size());

@@ -430,7 +430,17 @@ const SectionDeclaration& timestep() {
       .name = "dem.timestep",
       .doc = "the time step: a fraction of the critical step, or a fixed dt_s (refused above the critical step)",
       .parameters = {P::number("dt_s", "s", "fixed time step").positive().optional("fraction_of_critical x the critical step"),
-                     P::number("fraction_of_critical", "-", "fraction of the critical time step").within(kOpenFraction).fallback(kDefaultFractionOfCritical)},
+                     P::number("fraction_of_critical", "-", "fraction of the critical time step").within(kOpenFraction).fallback(kDefaultFractionOfCritical),
+                     // The instability guard: a run whose step is too large or whose walls
+                     // move too fast sees overlaps grow without bound, while a loaded contact
+                     // sits at F/k_n (a few per cent of the radius for most of a body). Where
+                     // a graded body puts a small sphere between a pile and a sphere several
+                     // times larger, that soft contact can carry its load at more than half
+                     // the small radius; such a model raises the limit.
+                     P::number("max_overlap_fraction", "-",
+                               "the run stops as unstable when a contact overlap exceeds this fraction of the smaller radius (a wall contact: of the particle's)")
+                         .within(kOpenFraction)
+                         .fallback(kDefaultMaxOverlapFraction)},
   };
   return s;
 }

@@ -273,6 +273,7 @@ TimestepConfig read_timestep(ConfigReader& root) {
   if (cfg->has("dt_s")) t.dt = cfg->number("dt_s");
   else cfg->accept("dt_s");
   t.fraction_of_critical = cfg->number("fraction_of_critical");
+  t.max_overlap_fraction = cfg->number("max_overlap_fraction");
   cfg->finish();
   return t;
 }

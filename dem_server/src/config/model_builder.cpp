@@ -125,6 +125,7 @@ DemModel build_model(const DemConfig& c) {
                                                                      .skin = c.skin,
                                                                      .threads = c.threads,
                                                                      .install_bonds_at_start = !prepared,
+                                                                     .max_overlap_fraction = c.timestep.max_overlap_fraction,
                                                                      .material_laws = c.material_laws});
   Simulation& sim = *model.simulation;
 

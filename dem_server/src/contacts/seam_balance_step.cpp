@@ -12,7 +12,8 @@ void Simulation::balance_seams(double dt) {
   join_materials_requested_ = false;
   if (!settings_.particle_law.can_add_bond_load()) return;  // seam bonds keep the law's zero load
   if (compute_contact_forces(dt, ContactRecord::complete))
-    throw SolverError("a contact overlap exceeded half a particle radius before the seam balance: the generated body overlaps; check the zones' seam settings");
+    throw SolverError("a contact overlap exceeded timestep.max_overlap_fraction of a particle radius before the seam balance (" + describe_largest_overlap() +
+                      "): the generated body overlaps; check the zones' seam settings");
 
   // Every particle's out-of-balance force: contacts and weight; which ones a wall holds.
   std::vector<Vec3> residual(particles_.size());

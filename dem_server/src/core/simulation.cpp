@@ -311,8 +311,10 @@ void Simulation::step(double dt, ContactRecord record) {
   outputs_complete_ = record == ContactRecord::complete;
   if (compute_contact_forces(dt, record)) {
     std::ostringstream msg;
-    msg << "a contact overlap exceeded half a particle radius at step " << step_ << ": the run is unstable; use a time step below the critical "
-        << critical_timestep() << " s (or a smaller fraction of it), softer contacts or slower walls";
+    msg << "a contact overlap exceeded " << settings_.max_overlap_fraction << " of the smaller particle radius at step " << step_ << " ("
+        << describe_largest_overlap() << "): the run is unstable; use a time step below the critical " << critical_timestep()
+        << " s (or a smaller fraction of it), softer contacts or slower walls; a slow contact (small speeds) between spheres of very"
+           " different sizes may instead carry its load at that overlap: then raise timestep.max_overlap_fraction (at most 1)";
     throw SolverError(msg.str());
   }
   if (settings_.local_damping != 0.0) damping_force_.resize(particles_.size());

@@ -23,10 +23,6 @@
 
 namespace dfc::dem {
 
-/// A contact whose overlap exceeds this fraction of the smaller radius means
-/// the run has become unstable (soft contacts stay at a few per cent).
-inline constexpr double max_overlap_fraction = 0.5;
-
 /// The two bodies of pair (i, j) as a law sees them: radii and effective mass.
 inline void set_pair_bodies(const ParticleStore& p, std::uint32_t i, std::uint32_t j, ContactKinematics& kin) noexcept {
   kin.effective_mass = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
@@ -109,7 +105,8 @@ struct PairStage {
 /// each contact's force and moment to the bodies Incidence::direct marks (the
 /// prefix of their sums, particle_loads.hpp; p.force/moment must have been
 /// started). Runs Incidence's ranges in parallel, each in increasing order.
-/// Returns true if some overlap exceeded max_overlap_fraction.
+/// Returns true if some overlap exceeded max_overlap_fraction of the smaller
+/// radius (SimulationSettings::max_overlap_fraction).
 /// Space: OpenSpace, or PeriodicSpace (periodic_cell.hpp): then the branch
 /// vector is the minimum image, the relative velocity includes the cell's
 /// affine flow, and out.shift[k] = (x_i + d) - x_j receives the image offset
@@ -126,7 +123,7 @@ struct PairStage {
 /// the body), and where a +0 enters a sum does not change its bits.
 template <ContactLawKernel Law, class Space = OpenSpace>
 bool evaluate_pair_contacts(const PairLaws<Law>& laws, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
-                            ContactRecord record, int threads, const Space& space = {}) {
+                            ContactRecord record, double max_overlap_fraction, int threads, const Space& space = {}) {
   const auto chunks = static_cast<std::int64_t>(incidence.pair_chunks());
   constexpr std::uint8_t both_direct = Incidence::direct_first | Incidence::direct_second;
   const bool record_all = record == ContactRecord::complete;
@@ -271,16 +268,17 @@ bool evaluate_pair_contacts(const PairLaws<Law>& laws, ParticleStore& p, PairCon
 /// The same with one law for every pair.
 template <ContactLawKernel Law, class Space = OpenSpace>
 bool evaluate_pair_contacts(const Law& law, ParticleStore& p, PairContacts& pairs, const Incidence& incidence, ContactOutputs& out, double dt,
-                            ContactRecord record, int threads, const Space& space = {}) {
-  return evaluate_pair_contacts(PairLaws<Law>{&law, nullptr}, p, pairs, incidence, out, dt, record, threads, space);
+                            ContactRecord record, double max_overlap_fraction, int threads, const Space& space = {}) {
+  return evaluate_pair_contacts(PairLaws<Law>{&law, nullptr}, p, pairs, incidence, out, dt, record, max_overlap_fraction, threads, space);
 }
 
 /// Evaluates the candidates of one wall into outputs[offset, offset + size).
 /// select_wall_contacts must have run on this wall for the current positions
-/// (it wrote the contact points into out.point). Returns true on an excessive overlap.
+/// (it wrote the contact points into out.point). Returns true when an overlap
+/// exceeded max_overlap_fraction of the particle's radius.
 template <ContactLawKernel Law>
 bool evaluate_wall_contacts(const Law& law, const ParticleStore& p, const Wall& wall, WallContacts& contacts, ContactOutputs& out,
-                            std::size_t offset, double dt, int threads) {
+                            std::size_t offset, double dt, double max_overlap_fraction, int threads) {
   const auto n = static_cast<std::int64_t>(contacts.size());
   bool excessive = false;
 #pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items) reduction(|| : excessive)

@@ -89,6 +89,7 @@ struct TriaxialConfig {
 
 struct TimestepConfig {
   double fraction_of_critical = sections::kDefaultFractionOfCritical;
+  double max_overlap_fraction = sections::kDefaultMaxOverlapFraction;  ///< the instability guard (SimulationSettings)
   std::optional<double> dt;  ///< s, fixed step instead of a fraction
 };
 

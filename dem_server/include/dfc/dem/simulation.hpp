@@ -31,6 +31,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <unordered_set>
 #include <vector>
 
@@ -58,6 +59,10 @@ struct SimulationSettings {
   double skin = 0.0;               ///< m, Verlet skin; <= 0: 0.2 x the largest radius
   int threads = 0;                 ///< OpenMP threads; <= 0: the OpenMP default
   bool install_bonds_at_start = true;  ///< bonded laws: bond at the first rebuild (false: wait for install_bonds_now)
+  /// A step throws SolverError when a contact overlap exceeds this fraction of
+  /// the smaller radius (a wall contact: of the particle's): the sign of an
+  /// unstable run (dem.timestep.max_overlap_fraction).
+  double max_overlap_fraction = sections::kDefaultMaxOverlapFraction;
   /// Laws of particle materials 1, 2, ... (graded upscaling: a zone each;
   /// particle_materials.hpp): the same law as particle_law, other parameters.
   std::vector<ContactLawSetting> material_laws{};
@@ -189,6 +194,10 @@ class Simulation {
   void compute_pair_constants();
   /// Step 2 of the cycle (contact_forces.cpp). Returns true on an excessive overlap.
   bool compute_contact_forces(double dt, ContactRecord record);
+  /// After compute_contact_forces returned true: the contact with the largest
+  /// overlap relative to the guarded radius, its particles and bond state
+  /// (contacts/overlap_report.cpp), for the error message.
+  [[nodiscard]] std::string describe_largest_overlap() const;
   /// The seam balance of bond_across_materials_now (contacts/seam_balance_step.cpp).
   void balance_seams(double dt);
   void move_walls(double dt);

@@ -22,6 +22,7 @@ inline constexpr double kDefaultLocalDamping = 0.7;
 /// tests and the REV builder, gets the same values).
 inline constexpr double kDefaultServoGain = 0.5;                     ///< servo.gain
 inline constexpr double kDefaultFractionOfCritical = 0.2;            ///< timestep.fraction_of_critical
+inline constexpr double kDefaultMaxOverlapFraction = 0.5;            ///< timestep.max_overlap_fraction
 inline constexpr double kDefaultEquilibriumTolerance = 0.01;         ///< <stage>.tolerance
 inline constexpr double kDefaultEquilibriumUnbalancedForceRatio = 0.01;  ///< <stage>.unbalanced_force_ratio
 inline constexpr std::int64_t kDefaultEquilibriumMaxSteps = 200000;     ///< <stage>.max_steps
