@@ -158,7 +158,7 @@ TEST(ContactLawRegistry, LinearDeclaresParametersHistoryAndUpscaling) {
   EXPECT_DOUBLE_EQ(l.ks, 1.2e5);
   EXPECT_EQ(l.friction, 0.5);
   EXPECT_EQ(l.damping_ratio_normal, 0.1);
-  EXPECT_NE(describe_contact_laws().find("kn_n_m [N/m] (required)"), std::string::npos);
+  EXPECT_NE(describe_contact_laws().find("parameters: kn_n_m ks_n_m friction damping_ratio_normal damping_ratio_shear"), std::string::npos);
 }
 
 }  // namespace

@@ -193,7 +193,11 @@ std::string describe_contact_laws() {
         << "    upscaling by S: " << info.upscaling_rule << "\n";
     for (const auto& s : info.stiffness) out << "    stiffness: " << s.key << " sets " << s.formula << " (" << s.source << ")\n";
     for (const auto& r : info.renamed) out << "    " << r.key << ": renamed " << r.renamed_to << " (refused: " << r.why << ")\n";
-    for (const auto& p : info.parameters) out << "    " << p.key << " [" << p.unit << "] (" << describe_presence(p) << "): " << p.doc << "\n";
+    // Each parameter's unit, default and meaning are in the section tree above
+    // (the contact section's law variants, from the same declarations): named here only.
+    out << "    parameters:";
+    for (const auto& p : info.parameters) out << " " << p.key;
+    out << "\n";
     out << "    per-contact history:";
     for (const auto& h : info.history) out << " " << h.name << " [" << h.unit << "]";
     out << "\n";
