@@ -24,6 +24,18 @@ ParticleStore random_packing(std::size_t n, std::uint64_t seed) {
   return p;
 }
 
+/// Every (particle slot, facet) with distance(centre, facet) < r + skin, sorted.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> facet_candidates_by_brute_force(const ParticleStore& p, const Wall& wall, double skin) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
+  for (std::uint32_t i = 0; i < p.size(); ++i)
+    for (std::uint32_t f = 0; f < wall.facet_count(); ++f) {
+      const auto& v = wall.facets[f];
+      if (distance_to_triangle(p.position[i], wall.vertices[v[0]], wall.vertices[v[1]], wall.vertices[v[2]]) < p.radius[i] + skin)
+        expected.emplace_back(i, f);
+    }
+  return expected;
+}
+
 TEST(NeighbourSearch, CandidatePairsEqualBruteForceOnARandomPacking) {
   ParticleStore p = random_packing(3000, 42);
   const double skin = 1e-4;
@@ -55,14 +67,35 @@ TEST(NeighbourSearch, FacetCandidatesEqualBruteForce) {
   const Wall pile = make_wall("pile", make_closed_cylinder_mesh({.axis_x = 0.01, .axis_y = 0.01, .tip_z = 0.01, .radius = 3e-3, .length = 0.05, .sides = 12}),
                               WallMotion::prescribed, test::linear(1e5, 1e5));
   const auto found = find_facet_candidates(grid, p, pile, skin, 6e-4, 2);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
-  for (std::uint32_t i = 0; i < p.size(); ++i)
-    for (std::uint32_t f = 0; f < pile.facet_count(); ++f) {
-      const auto& v = pile.facets[f];
-      if (distance_to_triangle(p.position[i], pile.vertices[v[0]], pile.vertices[v[1]], pile.vertices[v[2]]) < p.radius[i] + skin)
-        expected.emplace_back(i, f);
-    }
+  const auto expected = facet_candidates_by_brute_force(p, pile, skin);
   EXPECT_GT(expected.size(), 50u);
+  EXPECT_EQ(found, expected);
+}
+
+TEST(NeighbourSearch, FacetCandidatesOfAnOpenTubeEqualBruteForce) {
+  // The open pile's long, thin shaft facets (48 sides, 30 mm long) and its
+  // annulus, where the search culls most of each facet's box by
+  // TriangleDistanceBound: the candidates must still be exactly those of the
+  // exact distance test, including the spheres placed at the reach itself.
+  ParticleStore p = random_packing(3000, 11);
+  const double skin = 1e-4;
+  const Wall pile = make_wall("pile",
+                              make_open_tube_mesh({.axis_x = 0.01, .axis_y = 0.01, .tip_z = 0.012, .radius = 4e-3, .length = 0.03, .sides = 48,
+                                                   .inner_radius = 3e-3}),
+                              WallMotion::prescribed, test::linear(1e5, 1e5));
+  // Spheres whose surface is exactly the skin away from a shaft facet's face.
+  for (std::uint32_t f = 100; f < 110; ++f) {
+    const auto& v = pile.facets[f];
+    const Vec3 centre = (1.0 / 3.0) * (pile.vertices[v[0]] + pile.vertices[v[1]] + pile.vertices[v[2]]);
+    const Vec3 n = triangle_normal(pile.vertices[v[0]], pile.vertices[v[1]], pile.vertices[v[2]]);
+    p.add_sphere(std::int64_t(9000 + f), centre + (5e-4 + skin) * n, 5e-4, 2650.0);
+  }
+  std::vector<std::uint32_t> order;
+  const CellGrid grid = build_cell_grid(p.position, 2 * 6e-4 + skin, order);
+  p.permute(order);
+  const auto found = find_facet_candidates(grid, p, pile, skin, 6e-4, 2);
+  const auto expected = facet_candidates_by_brute_force(p, pile, skin);
+  EXPECT_GT(expected.size(), 500u);
   EXPECT_EQ(found, expected);
 }
 

@@ -7,6 +7,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/parallel.hpp"
+#include "dfc/dem/triangle_distance_bound.hpp"
 #include "dfc/dem/triangle_geometry.hpp"
 
 namespace dfc::dem {
@@ -181,6 +182,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> find_facet_candidates(const
     const auto& [ia, ib, ic] = wall.facets[std::size_t(f)];
     const Vec3 a = wall.vertices[ia], b = wall.vertices[ib], c = wall.vertices[ic];
     const double reach = r_max + skin;
+    const TriangleDistanceBound bound(a, b, c);
     const Vec3 lo = Vec3{std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z})} - Vec3{reach, reach, reach};
     const Vec3 hi = Vec3{std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})} + Vec3{reach, reach, reach};
     // A facet whose reach misses the particles' box has no candidates.
@@ -193,8 +195,14 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> find_facet_candidates(const
       for (std::int64_t y = c_lo[1]; y <= c_hi[1]; ++y)
         for (std::int64_t x = c_lo[0]; x <= c_hi[0]; ++x) {
           const std::size_t cell = grid.linear_index(x, y, z);
-          for (std::uint32_t p = grid.cell_start[cell]; p < grid.cell_start[cell + 1]; ++p)
-            if (distance_to_triangle(particles.position[p], a, b, c) < particles.radius[p] + skin) out.emplace_back(p, std::uint32_t(f));
+          for (std::uint32_t p = grid.cell_start[cell]; p < grid.cell_start[cell + 1]; ++p) {
+            const double particle_reach = particles.radius[p] + skin;
+            // Most particles of the box lie beside a long, thin facet (a pile's
+            // shaft): the bound rejects them without the closest point, and it
+            // never rejects one the exact test below would keep.
+            if (bound.certainly_beyond(particles.position[p], particle_reach)) continue;
+            if (distance_to_triangle(particles.position[p], a, b, c) < particle_reach) out.emplace_back(p, std::uint32_t(f));
+          }
         }
   }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> all;
