@@ -74,6 +74,14 @@ TEST(TriangleDistanceBound, ADegenerateTriangleCullsNothing) {
   const TriangleDistanceBound bound({0, 0, 0}, {1, 0, 0}, {2, 0, 0});
   EXPECT_EQ(bound.lower_bound({0, 5, 0}), 0.0);
   EXPECT_FALSE(bound.certainly_beyond({0, 5, 0}, 1e-3));
+  // A sliver (twice its area 1e-8 of its longest edge squared), whose normal
+  // rounding could mislead the cull: nothing is culled either.
+  const TriangleDistanceBound sliver({0, 0, 0}, {1, 0, 0}, {0.5, 1e-8, 0});
+  EXPECT_EQ(sliver.lower_bound({0.5, 0, 3}), 0.0);
+  EXPECT_FALSE(sliver.certainly_beyond({0.5, 0, 3}, 1e-3));
+  // A shaft-like facet (0.5 mm by 30 mm, 0.017) is not a sliver: it culls.
+  const TriangleDistanceBound shaft({0, 0, 0}, {0, 0, 0.03}, {5e-4, 0, 0.03});
+  EXPECT_TRUE(shaft.certainly_beyond({2e-4, 5e-3, 0.02}, 1e-3));
 }
 
 }  // namespace

@@ -9,7 +9,12 @@ namespace dfc::dem {
 
 TriangleDistanceBound::TriangleDistanceBound(const Vec3& a, const Vec3& b, const Vec3& c) noexcept
     : origin_(a), normal_(triangle_normal(a, b, c)) {
-  degenerate_ = normal_ == Vec3{};
+  // A sliver's normal is the direction of a cross product of nearly parallel
+  // edges, whose rounding error is eps / (2 area / longest edge^2): below
+  // 1e-6 that could exceed the margin of certainly_beyond, so a sliver culls
+  // nothing (mesh facets are far from it: a pile's shaft facet has 0.017).
+  const double longest2 = std::max({norm2(b - a), norm2(c - b), norm2(a - c)});
+  degenerate_ = normal_ == Vec3{} || !(norm(cross(b - a, c - a)) > 1e-6 * longest2);
   if (degenerate_) return;
   const std::array<Vec3, 3> from{a, b, c};
   const std::array<Vec3, 3> to{b, c, a};

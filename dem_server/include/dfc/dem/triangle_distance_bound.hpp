@@ -18,8 +18,9 @@ namespace dfc::dem {
 
 class TriangleDistanceBound {
  public:
-  /// The bound of triangle (a, b, c); a degenerate (zero-area) triangle gets
-  /// no half-spaces, so nothing is ever culled against it.
+  /// The bound of triangle (a, b, c); a degenerate triangle (zero area, or a
+  /// sliver: twice its area below 1e-6 of its longest edge squared) gets no
+  /// half-spaces, so nothing is ever culled against it.
   TriangleDistanceBound(const Vec3& a, const Vec3& b, const Vec3& c) noexcept;
 
   /// A lower bound of distance_to_triangle(p, a, b, c) (exact arithmetic).
