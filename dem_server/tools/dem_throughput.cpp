@@ -1,13 +1,28 @@
 // dem_throughput: time the DEM hot loop on a settled bed (particle-steps/s).
 //
 //   dem_throughput [--side N] [--layers N] [--threads "1 2"] [--steps N] [--max-settle N]
-//   dem_throughput --data FILE [--threads "1 2"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond]
+//   dem_throughput --data FILE [--threads "1 2"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond|damage_bond]
+//                  [--local-damping A]
+//   dem_throughput --section FILE [--threads "1 2"] [--warmup N] [--steps N] [--digest]
+//
+// --section: the real workload. FILE is a DEM section as dem_server receives
+// it (gravity_m_s2 included; bench/paper_model.sh writes one from a scenario):
+// the model is built as the server builds it (generation, pile, walls) once per
+// thread count, --warmup steps run untimed from the generated state, then
+// --steps timed. Prints particle-steps/s, pair candidates and bonds per
+// particle at the first and last timed step, and the resident memory per
+// particle; --digest hashes the final state (the same at every thread count).
 //
 // --law linear_pbond: the same packing with every pair closer than 10 um
 // bonded by a linear parallel bond as stiff as the contact and too strong to
 // break (the bonded throughput of issue 3; the peers' README lists LAMMPS BPM
 // with every contact bonded). Its linear part is the same contact: k_n =
 // pi E* R^2/(2R) = 1e5 N/m for the mean pair (R = 0.55 mm) gives E* = 1.157e8 Pa.
+// --law damage_bond: the same bonds by the damage-bond law (the chalk of the
+// studies), as stiff, with strengths too high to reach (1e15 Pa): intact
+// bonds only, so the law's own cost per bond sets the difference to
+// linear_pbond (while intact its linear contact is off, dem_contact_laws.md §3.6).
+// --local-damping A: PFC's local damping on the particles (the studies use 0.7).
 //
 // --data: the peer benchmark (shared/bench/peers/README.md) on a LAMMPS data
 // file (atom_style sphere: id type diameter density x y z): kn 1e5 N/m,
@@ -56,8 +71,10 @@ struct Options {
   int max_settle = 400000;
   std::string data;  ///< LAMMPS data file: the peer benchmark instead of the settled bed
   int warmup = 1000;
-  std::string law = "linear";  ///< --data only: "linear" or "linear_pbond"
-  bool digest = false;         ///< --data only: print a hash of the final state's bits
+  std::string law = "linear";  ///< --data only: "linear", "linear_pbond" or "damage_bond"
+  double local_damping = 0.0;  ///< --data only: local damping coefficient
+  std::string section;         ///< DEM section file: the real workload instead of a packing
+  bool digest = false;         ///< --data, --section: print a hash of the final state's bits
 };
 
 Options parse(int argc, char** argv) {
@@ -67,9 +84,14 @@ Options parse(int argc, char** argv) {
     if (a == "--help" || a == "-h") {
       std::cout << "dem_throughput: time the DEM hot loop (particle-steps/s)\n\n"
                    "  dem_throughput [--side N] [--layers N] [--threads \"1 2\"] [--steps N] [--max-settle N]\n"
-                   "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond] [--digest]\n\n"
+                   "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000]\n"
+                   "                 [--law linear|linear_pbond|damage_bond] [--local-damping A] [--digest]\n"
+                   "  dem_throughput --section FILE [--threads \"1 2\"] [--warmup N] [--steps N] [--digest]\n\n"
                    "Without --data: settles a bed of N x N x layers spheres, then times --steps steps per thread count.\n"
-                   "With --data: the peer benchmark on a LAMMPS data file (the PEERS_DIR folder of bench/dem_peers.sh).\n"
+                   "With --data: the peer benchmark on a LAMMPS data file (the PEERS_DIR folder of bench/dem_peers.sh);\n"
+                   "damage_bond bonds every pair within 10 um by the damage-bond law, too strong to yield.\n"
+                   "With --section: a DEM section as dem_server receives it (bench/paper_model.sh writes one from a\n"
+                   "scenario), built once per thread count; prints the rate, pairs and bonds per particle, memory.\n"
                    "--digest: also print a hash of the final state's bits (positions, velocities, spins, resultants,\n"
                    "pair history, contact forces), to check that a change to the code leaves results bit-identical.\n";
       std::exit(0);
@@ -94,16 +116,20 @@ Options parse(int argc, char** argv) {
     else if (a == "--data") o.data = v;
     else if (a == "--warmup") o.warmup = std::stoi(v);
     else if (a == "--law") {
-      if (v != "linear" && v != "linear_pbond") throw std::runtime_error("--law must be linear or linear_pbond, not " + v);
+      if (v != "linear" && v != "linear_pbond" && v != "damage_bond")
+        throw std::runtime_error("--law must be linear, linear_pbond or damage_bond, not " + v);
       o.law = v;
     }
+    else if (a == "--local-damping") o.local_damping = std::stod(v);
+    else if (a == "--section") o.section = v;
     else if (a == "--threads") {
       o.threads.clear();
       std::istringstream list(v);
       for (int t = 0; list >> t;) o.threads.push_back(t);
     } else throw std::runtime_error("unknown option " + a);
   }
-  if (o.digest && o.data.empty()) throw std::runtime_error("--digest needs --data (it hashes the peer benchmark's final state)");
+  if (o.digest && o.data.empty() && o.section.empty()) throw std::runtime_error("--digest needs --data or --section (it hashes their final state)");
+  if (!o.data.empty() && !o.section.empty()) throw std::runtime_error("--data and --section are two benchmarks: give one");
   return o;
 }
 
@@ -168,11 +194,15 @@ nlohmann::json peer_law(const std::string& law) {
   if (law == "linear")
     return {{"kn_n_m", 1e5}, {"ks_n_m", 1e5 * 2.0 / 7.0}, {"friction", 0.5}, {"damping_ratio_normal", 0.215}, {"damping_ratio_shear", 0.2015}};
   const double emod = 1e5 / (std::numbers::pi * 0.55e-3 / 2.0);
+  if (law == "damage_bond")
+    return {{"law", "damage_bond"}, {"emod_pa", emod}, {"kratio", 3.5}, {"friction", 0.5}, {"damping_ratio_normal", 0.215},
+            {"damping_ratio_shear", 0.2015}, {"bond_emod_pa", emod}, {"bond_kratio", 3.5}, {"ten_pa", 1e15}, {"com_pa", 1e15},
+            {"coh_pa", 1e15}, {"ucn_m", 1e-5}, {"ucs_m", 1e-5}, {"theta_c_rad", 1e-2}, {"bond_gap_m", 1e-5}};
   return {{"law", "linear_pbond"}, {"emod_pa", emod},  {"kratio", 3.5},       {"friction", 0.5},      {"damping_ratio_normal", 0.215},
           {"pb_emod_pa", emod},    {"pb_kratio", 3.5}, {"pb_ten_pa", 1e15}, {"pb_coh_pa", 1e15}, {"bond_gap_m", 1e-5}, {"damping_ratio_shear", 0.2015}};
 }
 
-nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::string& law_name) {
+nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::string& law_name, double local_damping) {
   const nlohmann::json law = peer_law(law_name);
   // Periodic in x and y like the peers (docs/dem_periodic.md), with their
   // floor at z = 0: the settled packing rests its bottom layer up to 31 nm into
@@ -187,7 +217,7 @@ nlohmann::json peer_scenario(const PeerPacking& pack, int threads, const std::st
   return {{"particles", {{"generator", "list"}, {"spheres", pack.spheres}, {"density_kg_m3", 2650}}},
           {"contact", law},
           {"wall_contact", peer_law("linear")},
-          {"damping", {{"local", 0.0}}},
+          {"damping", {{"local", local_damping}}},
           {"timestep", {{"dt_s", 1e-6}}},
           {"gravity_m_s2", {0, 0, -9.81}},
           {"neighbour", {{"skin_m", 1.1e-4}}},
@@ -226,7 +256,7 @@ double translational_kinetic_energy(const ParticleStore& p) {
 void run_peer_benchmark(const Options& o) {
   const PeerPacking pack = read_lammps_data(o.data);
   for (const int threads : o.threads) {
-    DemModel model = build_model(parse_dem_config(peer_scenario(pack, threads, o.law)));
+    DemModel model = build_model(parse_dem_config(peer_scenario(pack, threads, o.law, o.local_damping)));
     Simulation& sim = *model.simulation;
     if (model.removed_particles > 0) std::cout << model.removed_particles << " spheres cut by the side walls were removed\n";
     sim.run(o.warmup, 1e-6);
@@ -245,12 +275,64 @@ void run_peer_benchmark(const Options& o) {
   }
 }
 
+/// kB of a "Vm...:" line of /proc/self/status (0 where there is none).
+double status_kilobytes(const std::string& field) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind(field + ":", 0) == 0) return std::stod(line.substr(field.size() + 1));
+  return 0.0;
+}
+
+/// Pair candidates and bonds that hold (intact or damaged), each per particle.
+std::string pairs_and_bonds(const Simulation& sim) {
+  const double n = double(sim.particles().size());
+  const BondCounts b = sim.bond_counts();
+  std::ostringstream out;
+  out << double(sim.pair_contacts().size()) / n << " pair candidates and " << double(b.intact + b.damaged) / n << " bonds per particle";
+  return out.str();
+}
+
+/// The real workload: a DEM section built as dem_server builds it, stepped at rest.
+void run_section_benchmark(const Options& o) {
+  std::ifstream in(o.section);
+  if (!in) throw std::runtime_error("cannot read " + o.section);
+  const nlohmann::json section = nlohmann::json::parse(in);
+  for (const int threads : o.threads) {
+    nlohmann::json with_threads = section;
+    with_threads["threads"] = threads;
+    const auto built = std::chrono::steady_clock::now();
+    DemModel model = build_model(parse_dem_config(with_threads));
+    Simulation& sim = *model.simulation;
+    const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
+    sim.run(o.warmup, model.dt);
+    const double rss = status_kilobytes("VmRSS") * 1024.0;
+    const std::string first = pairs_and_bonds(sim);
+    const std::size_t rebuilds = sim.rebuild_count();
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.run(o.steps, model.dt);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double n = double(sim.particles().size());
+    std::cout << "threads " << sim.threads() << ": " << n * o.steps / seconds << " particle-steps/s (" << seconds << " s for " << o.steps
+              << " steps of " << sim.particles().size() << " particles, dt " << model.dt << " s, " << sim.rebuild_count() - rebuilds
+              << " rebuilds; first step " << first << ", last " << pairs_and_bonds(sim) << "; resident memory " << rss / n
+              << " bytes per particle (" << rss / 1e9 << " GB, peak " << status_kilobytes("VmHWM") * 1024.0 / 1e9 << " GB); built in "
+              << build_seconds << " s";
+    if (o.digest) std::cout << ", state digest " << std::hex << state_digest(sim) << std::dec;
+    std::cout << ")" << std::endl;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
   const Options o = parse(argc, argv);
   if (!o.data.empty()) {
     run_peer_benchmark(o);
+    return 0;
+  }
+  if (!o.section.empty()) {
+    run_section_benchmark(o);
     return 0;
   }
   // 1. Settle.

@@ -100,7 +100,14 @@ void print_advance_statistics(std::string_view name, const AdvanceStatistics& st
   const double handling_s = std::max(0.0, service_seconds - statistics.solver_seconds);
   std::cerr << name << ": " << statistics.advances << " advances (" << statistics.steps << " steps): solver " << statistics.solver_seconds
             << " s (" << statistics.solver_seconds * per_advance_us << " us per advance), message handling " << handling_s << " s ("
-            << handling_s * per_advance_us << " us per advance)\n";
+            << handling_s * per_advance_us << " us per advance)";
+  // The steady cost: the first advance (one-time work) apart. The steps of
+  // the later advances are those of all but the first, assuming one size.
+  if (statistics.advances > 1)
+    std::cerr << "; first advance " << statistics.first_advance_seconds << " s, later ones "
+              << (statistics.solver_seconds - statistics.first_advance_seconds) * 1e6 / static_cast<double>(statistics.advances - 1)
+              << " us per advance";
+  std::cerr << "\n";
 }
 
 int serve(const ServerProgram& program, const ServerOptions& options) {

@@ -204,7 +204,9 @@ Message ServerSession::on_advance(const Message& request) {
   AdvanceRequest advance{step_, n->get<std::int64_t>(), dt->get<double>(), request.arrays};
   const auto solver_start = std::chrono::steady_clock::now();
   AdvanceResult result = backend_.advance(advance);
-  advance_statistics_.solver_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();
+  const double solver_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_start).count();
+  advance_statistics_.solver_seconds += solver_seconds;
+  if (advance_statistics_.advances == 0) advance_statistics_.first_advance_seconds = solver_seconds;
   advance_statistics_.advances += 1;
   advance_statistics_.steps += advance.n_steps;
   step_ += advance.n_steps;

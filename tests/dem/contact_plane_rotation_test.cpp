@@ -7,8 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <random>
 
 #include "dfc/dem/contact_plane_rotation.hpp"
 
@@ -109,6 +112,40 @@ TEST(ContactFrameRotation, FirstContactProjectsAndOppositeNormalsDoNotDivideByZe
   const Vec3 flipped = ContactFrameRotation::between(-1.0 * n1, n1).apply(v);
   EXPECT_TRUE(std::isfinite(flipped.x) && std::isfinite(flipped.y) && std::isfinite(flipped.z));
   EXPECT_EQ(flipped.z, 0.0);
+}
+
+/// The three doubles' bits, so that +0 and -0 differ.
+std::array<std::uint64_t, 3> bits(const Vec3& v) { return {std::bit_cast<std::uint64_t>(v.x), std::bit_cast<std::uint64_t>(v.y), std::bit_cast<std::uint64_t>(v.z)}; }
+
+/// A law without a previous normal: each vector projected, rescaled and twirled.
+struct ProjectingLaw {
+  static constexpr std::array<std::size_t, 2> in_plane_history{0, 3};
+};
+
+// rotate_in_plane_history leaves a +0 vector as it is (no store) because
+// turning it gives +0 bit for bit at any normal and any spin below a quarter
+// turn per step; and every other vector, -0 included, exactly as
+// turn_with_contact_plane turns it.
+TEST(ContactTwirl, APositiveZeroVectorTurnsIntoPositiveZeroAndTheSkipChangesNoBit) {
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const std::array<std::uint64_t, 3> zero_bits{0, 0, 0};
+  for (int trial = 0; trial < 20000; ++trial) {
+    ContactKinematics k;
+    k.normal = unit({u(rng), u(rng), u(rng)});
+    // Spins up to 0.9 of the quarter turn per step (t = spin dt / 2 < 1), and none.
+    k.dt = 1e-6;
+    k.mean_spin_about_normal = trial % 10 == 0 ? 0.0 : 1.8e6 * u(rng);
+    const ContactTwirl twirl = ContactTwirl::of(k);
+    ASSERT_GT(twirl.cos_angle, 0.0);
+    EXPECT_EQ(bits(turn_with_contact_plane(Vec3{}, k.normal, twirl)), zero_bits) << "trial " << trial;
+    // A row with a +0 vector, and one with a vector holding a -0 component.
+    std::array<double, 6> row{0.0, 0.0, 0.0, -0.0, 1e-3 * u(rng), 1e-3 * u(rng)};
+    const Vec3 second = load_vec3(row.data() + 3);
+    rotate_in_plane_history<ProjectingLaw>(row.data(), k);
+    EXPECT_EQ(bits(load_vec3(row.data())), zero_bits);
+    EXPECT_EQ(bits(load_vec3(row.data() + 3)), bits(turn_with_contact_plane(second, k.normal, twirl)));
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // inside the envelope (f <= 0), D never decreases, and D equals the
 // corrected Eq. 2 of its accumulated plastic measures.
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +73,45 @@ TEST(DamageBond, LinearContactActsOnlyOnceDamaged) {
   const ContactForce g = law.evaluate(k, h.data());
   // Broken: the linear contact k_n = π E* R²/(2R) times the overlap, pushing the first body away.
   EXPECT_NEAR(g.on_first.z, -M_PI * 1.7e9 * 1e-3 / 2.0 * 1e-7, 1e-12);
+}
+
+// The fast path of update_bond: where surely_elastic holds, the full test
+// of the elastic trial (outside_damage_envelope, with the divisions and
+// square roots it needs) must find the trial inside, or the fast path would
+// skip a return. Sampled around the fast path's bounds (1/2, 1/2, 1/4 of the
+// capacities) and up to 1.5 times the capacities, in tension and compression.
+TEST(DamageBond, SurelyElasticTrialsAreInsideTheEnvelope) {
+  const DamageBondLaw law = seed001_law();
+  ContactKinematics k;
+  k.radius_first = 1e-3;
+  k.radius_second = 0.6e-3;
+  double c[DamageBondLaw::constants_size];
+  law.pair_constants(k, c);
+  const double kn = c[DamageBondLaw::bond_kn], ks = c[DamageBondLaw::bond_ks], r = law.radius_multiplier * 0.6e-3;
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), share(0.0, 1.0);
+  int fast = 0, slow = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    // Target ratios n, v, m of the trial point, then the strains that give them.
+    const double n = 1.5 * u(rng), v = 0.75 * share(rng), m = 0.4 * share(rng);
+    const double sigma_0 = n >= 0.0 ? law.tensile_strength : law.compressive_strength;
+    const Vec3 slip_direction = Vec3{u(rng), u(rng), 0.0};
+    const Vec3 bend_direction = Vec3{u(rng), u(rng), 0.0};
+    DamageBondLaw::Strain e;
+    e.opening = n * sigma_0 / kn;
+    e.slip = (v * law.cohesion / ks / norm(slip_direction)) * slip_direction;
+    e.bend = (m * law.tensile_strength / (kn * r) / norm(bend_direction)) * bend_direction;
+    if (!law.surely_elastic(e, c, k)) {
+      ++slow;
+      continue;
+    }
+    ++fast;
+    const EnvelopePoint point{kn * e.opening / sigma_0, ks * norm(e.slip) / law.cohesion, kn * norm(e.bend) * r / law.tensile_strength};
+    ASSERT_FALSE(outside_damage_envelope(point)) << "n " << point.n << " v " << point.v << " m " << point.m;
+  }
+  // Both paths were sampled.
+  EXPECT_GT(fast, 10000);
+  EXPECT_GT(slow, 10000);
 }
 
 }  // namespace

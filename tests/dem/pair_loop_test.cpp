@@ -15,6 +15,7 @@
 // half the pairs meet through the boundary (minimum image, image shift,
 // lever arm of the image) and the cell deforms (affine relative velocity);
 // the particle sums the loop adds are checked too.
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -23,6 +24,7 @@
 
 #include "dfc/common/sections/dem_sections.hpp"
 #include "dfc/dem/contact_kernels.hpp"
+#include "dfc/dem/damage_bond_law.hpp"
 #include "dfc/dem/linear_law.hpp"
 #include "dfc/dem/linear_pbond_law.hpp"
 #include "dfc/dem/particle_loads.hpp"
@@ -203,6 +205,64 @@ TEST(PairLoop, ParallelBondContactsAreWhatTheLawGivesEachContactAlone) {
   EXPECT_GT(intact, 0U);
   EXPECT_GT(broke_in_shear, 0U);
   EXPECT_GT(broke_in_tension_now, 0U);
+}
+
+/// damage_bond rows, four kinds in turn: intact with the plastic parts, the
+/// accumulated measures and the linear shear force +0 (a bond that never
+/// yielded: the loop leaves +0 vectors unturned and unstored); damaged, with
+/// random plastic parts; broken (every column cleared, as break_bond leaves
+/// it); and never bonded (all +0). Displacements of about 1e-9 m and
+/// rotations of 1e-6 rad, so that the loads are of the order of the
+/// strengths of weak_damage_bonds.
+void damage_bond_rows(std::size_t k, double* row) {
+  using L = DamageBondLaw;
+  for (std::size_t c = L::opening; c < L::twist; ++c) row[c] *= 1e-6;
+  for (std::size_t c = L::twist; c < L::plastic_opening; ++c) row[c] *= 1e-3;
+  for (std::size_t c = L::plastic_opening; c < L::plastic_bend; ++c) row[c] *= 1e-6;
+  for (std::size_t c = L::plastic_bend; c < L::accumulated_opening; ++c) row[c] *= 1e-3;
+  for (std::size_t c = L::accumulated_opening; c < L::linear_shear; ++c) row[c] = std::abs(row[c]) * 1e-6;
+  switch (k % 4) {
+    case 0:
+      for (std::size_t c = L::plastic_opening; c < L::history_size; ++c) row[c] = 0.0;
+      row[L::damage] = 0.0;
+      set_bond_state(row, BondState::intact);
+      break;
+    case 1:
+      row[L::damage] = 0.3;
+      set_bond_state(row, BondState::damaged);
+      break;
+    case 2:
+      for (std::size_t c = 1; c < L::linear_shear; ++c) row[c] = 0.0;
+      row[L::damage] = 1.0;
+      set_bond_state(row, BondState::broken_shear);
+      break;
+    default:
+      for (std::size_t c = 0; c < L::history_size; ++c) row[c] = 0.0;
+  }
+}
+
+/// Strengths of the order of a step's loads (k̄ = 5e10 Pa/m times the
+/// step's relative motion, 0.01 m/s x 1e-6 s, is 500 Pa) and softening
+/// lengths of the plastic displacements: in one step some bonds stay
+/// elastic, some yield, and some of those break (counted below: 25 / 115 / 74).
+DamageBondLaw weak_damage_bonds() {
+  return {.emod = 1e8, .kratio = 2.0, .friction = 0.5, .damping_ratio_normal = 0.1, .bond_emod = 1e8, .bond_kratio = 2.0,
+          .radius_multiplier = 1.0, .tensile_strength = 300.0, .compressive_strength = 5e3, .cohesion = 1e3, .u_cn = 1e-9,
+          .u_cs = 1e-9, .theta_c = 1e-5, .bond_gap = 1e-4, .damping_ratio_shear = 0.1};
+}
+
+TEST(PairLoop, DamageBondContactsAreWhatTheLawGivesEachContactAlone) {
+  PairContacts after = expect_loop_equals_law_alone(weak_damage_bonds(), damage_bond_rows);
+  std::size_t intact = 0, damaged_now = 0, broke_now = 0;
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const BondState s = bond_state(after.row(k));
+    intact += s == BondState::intact;
+    damaged_now += k % 4 == 0 && s == BondState::damaged;
+    broke_now += k % 4 < 2 && !is_bonded(s);
+  }
+  EXPECT_GT(intact, 0U);
+  EXPECT_GT(damaged_now, 0U);
+  EXPECT_GT(broke_now, 0U);
 }
 
 TEST(PairLoop, ContactsThroughADeformingPeriodicBoundaryAreWhatTheLawGivesEachContactAlone) {

@@ -299,6 +299,12 @@ void Simulation::check_pair_state(const StateReader& in) const {
 
 void Simulation::save_state(StateWriter& out) const { transfer_state(out, *this); }
 
-void Simulation::load_state(StateReader& in) { transfer_state(in, *this); }
+void Simulation::load_state(StateReader& in) {
+  transfer_state(in, *this);
+  // The pair constants follow from the radii, masses and laws alone: computed
+  // again, they are the same bits, and a checkpoint written before a law had
+  // constants (its stride 0) resumes with them.
+  compute_pair_constants();
+}
 
 }  // namespace dfc::dem

@@ -36,75 +36,37 @@ Vec3 direction(const Vec3& v) noexcept {
 
 }  // namespace
 
-ContactForce DamageBondLaw::update_bond(const ContactKinematics& k, double* h) const noexcept {
-  const Vec3& n = k.normal;
-  const BondSection s = bond_section(k, radius_multiplier);
-  const double kn = deformability_bond_kn(k, bond_emod);
-  const double ks = kn / bond_kratio;
-
-  // 1. Total displacements (rotated with the contact plane) and the plastic parts.
-  const BondIncrements d = bond_increments(k);
-  const ContactTwirl twirl = ContactTwirl::of(k);
-  const double u_n = h[opening] + d.normal;
-  const Vec3 u_s = load_in_plane(h + slip, k.normal, twirl) + d.shear;
-  const double theta_t = h[twist] + d.twist;
-  const Vec3 theta_b = load_in_plane(h + bend, k.normal, twirl) + d.bend;
-  double u_np = h[plastic_opening];
-  Vec3 u_sp = load_in_plane(h + plastic_slip, k.normal, twirl);
-  Vec3 theta_bp = load_in_plane(h + plastic_bend, k.normal, twirl);
-
-  // 2. Elastic trial in normalised coordinates (the (1-D) factors cancel).
-  double e_n = u_n - u_np;
-  Vec3 e_s = u_s - u_sp;
-  Vec3 e_b = theta_b - theta_bp;
-  const double sigma_0 = e_n >= 0.0 ? tensile_strength : compressive_strength;
-  const EnvelopePoint trial{kn * e_n / sigma_0, ks * norm(e_s) / cohesion, kn * norm(e_b) * s.radius / tensile_strength};
+double DamageBondLaw::yield(Strain& e, const double* c, const ContactKinematics& k, double* h) const noexcept {
+  const double kn = c[bond_kn], ks = c[bond_ks], radius = bond_section(k, radius_multiplier).radius;
+  const double sigma_0 = e.opening >= 0.0 ? tensile_strength : compressive_strength;
+  const EnvelopePoint trial{kn * e.opening / sigma_0, ks * norm(e.slip) / cohesion, kn * norm(e.bend) * radius / tensile_strength};
   double damage_value = h[damage];
-  if (outside_damage_envelope(trial)) {
-    // 3. Closest-point return (energy norm) and the plastic increments it implies.
-    const ReturnWeights w{sigma_0 * sigma_0 / kn, cohesion * cohesion / ks, tensile_strength * tensile_strength / (4.0 * kn)};
-    const EnvelopePoint x = closest_admissible_point(trial, w);
-    const double e_n_new = x.n * sigma_0 / kn;
-    const Vec3 e_s_new = (x.v * cohesion / ks) * direction(e_s);
-    const Vec3 e_b_new = (x.m * tensile_strength / (kn * s.radius)) * direction(e_b);
-    h[accumulated_opening] += std::abs(e_n - e_n_new);
-    h[accumulated_slip] += norm(e_s - e_s_new);
-    h[accumulated_bend] += norm(e_b - e_b_new);
-    u_np += e_n - e_n_new;
-    u_sp += e_s - e_s_new;
-    theta_bp += e_b - e_b_new;
-    e_n = e_n_new;
-    e_s = e_s_new;
-    e_b = e_b_new;
-    // 4. Damage (corrected Eq. 2), never lowered.
-    damage_value = std::max(damage_value, damage_from(h[accumulated_opening], h[accumulated_slip], h[accumulated_bend]));
-  }
+  if (!outside_damage_envelope(trial)) return damage_value;
+  // Closest-point return (energy norm) and the plastic increments it implies.
+  const ReturnWeights w{sigma_0 * sigma_0 / kn, cohesion * cohesion / ks, tensile_strength * tensile_strength / (4.0 * kn)};
+  const EnvelopePoint x = closest_admissible_point(trial, w);
+  const double opening_new = x.n * sigma_0 / kn;
+  const Vec3 slip_new = (x.v * cohesion / ks) * direction(e.slip);
+  const Vec3 bend_new = (x.m * tensile_strength / (kn * radius)) * direction(e.bend);
+  h[accumulated_opening] += std::abs(e.opening - opening_new);
+  h[accumulated_slip] += norm(e.slip - slip_new);
+  h[accumulated_bend] += norm(e.bend - bend_new);
+  e.plastic_opening += e.opening - opening_new;
+  e.plastic_slip += e.slip - slip_new;
+  e.plastic_bend += e.bend - bend_new;
+  e.opening = opening_new;
+  e.slip = slip_new;
+  e.bend = bend_new;
+  // Damage (corrected Eq. 2), never lowered.
+  return std::max(damage_value, damage_from(h[accumulated_opening], h[accumulated_slip], h[accumulated_bend]));
+}
 
-  // 5. Breakage (§3.6): the bond and its displacements are removed.
-  if (damage_value > breakage_damage) {
-    const double normal_term = h[accumulated_opening] / u_cn;
-    const bool tensile = e_n >= 0.0 && normal_term >= h[accumulated_slip] / u_cs && normal_term >= h[accumulated_bend] / theta_c;
-    for (std::size_t c = 1; c < linear_shear; ++c) h[c] = 0.0;
-    h[damage] = 1.0;
-    set_bond_state(h, tensile ? BondState::broken_tension : BondState::broken_shear);
-    return {};
-  }
-  h[damage] = damage_value;
-  set_bond_state(h, damage_value > 0.0 ? BondState::damaged : BondState::intact);
-  h[opening] = u_n;
-  store_vec3(h + slip, u_s);
-  h[twist] = theta_t;
-  store_vec3(h + bend, theta_b);
-  h[plastic_opening] = u_np;
-  store_vec3(h + plastic_slip, u_sp);
-  store_vec3(h + plastic_bend, theta_bp);
-
-  // 6. Forces (Eq. 1) on the first body: tension pulls it along +n.
-  const double intact = 1.0 - damage_value;
-  const double normal_force = intact * kn * s.area * e_n;
-  const Vec3 shear_force = (intact * ks * s.area) * e_s;
-  const Vec3 couple = (intact * kn * s.inertia) * e_b + (intact * ks * s.polar * theta_t) * n;
-  return {shear_force + normal_force * n, couple};
+void DamageBondLaw::break_bond(double elastic_opening, double* h) const noexcept {
+  const double normal_term = h[accumulated_opening] / u_cn;
+  const bool tensile = elastic_opening >= 0.0 && normal_term >= h[accumulated_slip] / u_cs && normal_term >= h[accumulated_bend] / theta_c;
+  for (std::size_t c = 1; c < linear_shear; ++c) h[c] = 0.0;
+  h[damage] = 1.0;
+  set_bond_state(h, tensile ? BondState::broken_tension : BondState::broken_shear);
 }
 
 }  // namespace dfc::dem

@@ -78,6 +78,11 @@ void compute_pair_constants(const Law& law, const ParticleStore& p, PairContacts
 /// -11 % time unbonded, about -9 % bonded; docs/dem_benchmarks.md).
 inline constexpr std::size_t pair_block_size = 256;
 
+/// How many pairs ahead the classifying loop prefetches history rows, and
+/// the doubles of a 64-byte cache line.
+inline constexpr std::size_t pair_prefetch_distance = 8;
+inline constexpr std::size_t doubles_per_cache_line = 8;
+
 struct PairBlock {
   std::uint32_t acting[pair_block_size];   ///< offsets in the block of the candidates to evaluate, increasing
   std::uint32_t apart[pair_block_size];    ///< offsets of those that carry nothing this step, increasing
@@ -141,6 +146,21 @@ bool evaluate_pair_contacts(const PairLaws<Law>& laws, ParticleStore& p, PairCon
       block.acting_count = block.apart_count = 0;
       for (std::size_t o = 0; o < count; ++o) {
         const std::size_t k = first + o;
+        // The history row of a pair a few ahead, every cache line of it: this
+        // loop reads each row's first line (a bond's state) and the stages
+        // below the rest, and in a model larger than the caches those lines
+        // come from memory (prefetch only: the same results).
+        if (k + pair_prefetch_distance < range_end) {
+          const double* ahead = pairs.row(k + pair_prefetch_distance);
+          for (std::size_t line = 0; line < pairs.stride; line += doubles_per_cache_line) __builtin_prefetch(ahead + line, 1);
+          __builtin_prefetch(ahead + pairs.stride - 1, 1);
+          // and the second body's state, read here and in the kinematics (the
+          // first bodies come in order, the second ones from around the model).
+          const std::uint32_t j_ahead = pairs.second[k + pair_prefetch_distance];
+          __builtin_prefetch(&p.position[j_ahead]);
+          __builtin_prefetch(&p.velocity[j_ahead]);
+          __builtin_prefetch(&p.angular_velocity[j_ahead]);
+        }
         const std::uint32_t i = pairs.first[k];
         const std::uint32_t j = pairs.second[k];
         const Vec3 xi = p.position[i];

@@ -19,8 +19,10 @@
 //          "twirling" correction; Itasca PFC3D 3.x Theory and Background, the
 //          second rotation of the shear force, by the mean spin of the two
 //          bodies about the normal).
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include "dfc/dem/contact_model.hpp"
 #include "dfc/dem/vec3.hpp"
@@ -28,6 +30,10 @@
 namespace dfc::dem {
 
 [[nodiscard]] inline Vec3 load_vec3(const double* h) noexcept { return {h[0], h[1], h[2]}; }
+/// True when the 3 doubles at h are +0, every bit zero (a -0 is not).
+[[nodiscard]] inline bool is_positive_zero_vec3(const double* h) noexcept {
+  return (std::bit_cast<std::uint64_t>(h[0]) | std::bit_cast<std::uint64_t>(h[1]) | std::bit_cast<std::uint64_t>(h[2])) == 0;
+}
 inline void store_vec3(double* h, const Vec3& v) noexcept {
   h[0] = v.x;
   h[1] = v.y;
@@ -114,7 +120,7 @@ struct ContactTwirl {
 /// one ContactFrameRotation and stores the new normal; any other projects and
 /// rescales each (rotate_into_contact_plane). Both then twirl them (ContactTwirl).
 template <class Law>
-void rotate_in_plane_history(double* history, const ContactKinematics& k) noexcept {
+[[gnu::always_inline]] inline void rotate_in_plane_history(double* history, const ContactKinematics& k) noexcept {
   const ContactTwirl twirl = ContactTwirl::of(k);
   if constexpr (requires { Law::previous_normal_offset; }) {
     double* stored_normal = history + Law::previous_normal_offset;
@@ -123,8 +129,17 @@ void rotate_in_plane_history(double* history, const ContactKinematics& k) noexce
       store_vec3(history + offset, twirl.apply(tilt.apply(load_vec3(history + offset)), k.normal));
     store_vec3(stored_normal, k.normal);
   } else {
-    for (const std::size_t offset : Law::in_plane_history)
+    // A +0 vector turns into +0 exactly (rotate_into_contact_plane returns it
+    // as it is; the twirl gives cos·(+0) + sin·(±0) = +0 for cos > 0, a turn
+    // below 90° in a step), so it is left as it is: the same bits without
+    // the arithmetic, and without the store that would dirty its cache line
+    // (most rows of a bonded model hold such vectors: plastic parts of bonds
+    // that never yielded, the contact force of an intact bond).
+    const bool keep_zeros = twirl.cos_angle > 0.0;
+    for (const std::size_t offset : Law::in_plane_history) {
+      if (keep_zeros && is_positive_zero_vec3(history + offset)) continue;
       store_vec3(history + offset, turn_with_contact_plane(load_vec3(history + offset), k.normal, twirl));
+    }
   }
 }
 

@@ -35,6 +35,8 @@
 //
 // History (23): state, D, u_n, u_s (3), θ_t, θ_b (3), u_n^p, u_s^p (3),
 // θ_b^p (3), ū_n^p, ū_s^p, θ̄_b^p, linear shear force (3).
+#include <array>
+#include <cmath>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -88,14 +90,95 @@ struct DamageBondLaw {
     return {kn + kbn, kn / kratio + kbn / bond_kratio};
   }
 
-  void separate(double* history) const noexcept { store_vec3(history + linear_shear, {}); }
+  /// Sets the linear contact's shear force to +0; one already +0 is not
+  /// stored again (an intact bond separates every step: its row's last
+  /// cache line then stays clean).
+  void separate(double* history) const noexcept {
+    if (!is_positive_zero_vec3(history + linear_shear)) store_vec3(history + linear_shear, {});
+  }
+
+  /// SkipsIdleGaps: without a bond (never bonded, or broken) a gap carries
+  /// nothing: evaluate returns zero and calls separate.
+  [[nodiscard]] static bool idle_across_gap(const double* history) noexcept { return !is_bonded(bond_state(history)); }
+
+  /// Pair constants (contact_model.hpp HasPairConstants): the bond's
+  /// stiffnesses, two divisions per bond that depend on the radii alone, so
+  /// the pair loop computes them at a list rebuild instead of every step (the
+  /// same expressions, so the same bits). The section (products only) and the
+  /// linear contact (it acts on damaged or broken bonds in contact, a few) are
+  /// computed where used: 16 bytes per pair instead of 80.
+  enum Constant : std::size_t {
+    bond_kn,  // k̄_n = Ē*/(R1+R2)
+    bond_ks,  // k̄_s = k̄_n/κ̄*
+    constants_size_
+  };
+  static constexpr std::size_t constants_size = constants_size_;
+  void pair_constants(const ContactKinematics& k, double* c) const noexcept {
+    c[bond_kn] = deformability_bond_kn(k, bond_emod);
+    c[bond_ks] = c[bond_kn] / bond_kratio;
+  }
+
+  /// The bond's displacements (m, rad) during one update: the elastic parts
+  /// e = u - u^p and the plastic parts u^p, in the current contact plane.
+  struct Strain {
+    double opening = 0.0;
+    Vec3 slip;
+    Vec3 bend;
+    double plastic_opening = 0.0;
+    Vec3 plastic_slip;
+    Vec3 plastic_bend;
+  };
 
   /// D of the corrected Eq. 2 from the accumulated plastic measures.
   [[nodiscard]] double damage_from(double opening_p, double slip_p, double bend_p) const noexcept;
 
   /// Elastic trial, return to the envelope, damage and breakage of a bonded
-  /// contact; returns the bond's force and couple on the first body.
-  [[nodiscard]] ContactForce update_bond(const ContactKinematics& k, double* history) const noexcept;
+  /// contact whose stored vectors are already in k's contact plane; returns
+  /// the bond's force and couple on the first body.
+  [[nodiscard]] [[gnu::always_inline]] ContactForce update_bond(const ContactKinematics& k, const double* c, double* h) const noexcept {
+    // 1. Total displacements and the plastic parts.
+    const BondIncrements d = bond_increments(k);
+    const double u_n = h[opening] + d.normal;
+    const Vec3 u_s = load_vec3(h + slip) + d.shear;
+    const double theta_t = h[twist] + d.twist;
+    const Vec3 theta_b = load_vec3(h + bend) + d.bend;
+    const double u_np = h[plastic_opening];
+    const Vec3 u_sp = load_vec3(h + plastic_slip), theta_bp = load_vec3(h + plastic_bend);
+    Strain e{.opening = u_n - u_np, .slip = u_s - u_sp, .bend = theta_b - theta_bp, .plastic_opening = u_np, .plastic_slip = u_sp, .plastic_bend = theta_bp};
+
+    // 2.-4. Elastic trial, return to the envelope and damage, unless the trial
+    // is surely inside the envelope (then the full test says so too).
+    double damage_value = h[damage];
+    if (!surely_elastic(e, c, k)) {
+      damage_value = yield(e, c, k, h);
+      // Otherwise the plastic parts are the stored ones (already in this
+      // plane): not stored again, which would only dirty their cache line.
+      h[plastic_opening] = e.plastic_opening;
+      store_vec3(h + plastic_slip, e.plastic_slip);
+      store_vec3(h + plastic_bend, e.plastic_bend);
+    }
+
+    // 5. Breakage (§3.6): the bond and its displacements are removed.
+    if (damage_value > breakage_damage) {
+      break_bond(e.opening, h);
+      return {};
+    }
+    h[damage] = damage_value;
+    set_bond_state(h, damage_value > 0.0 ? BondState::damaged : BondState::intact);
+    h[opening] = u_n;
+    store_vec3(h + slip, u_s);
+    h[twist] = theta_t;
+    store_vec3(h + bend, theta_b);
+
+    // 6. Forces (Eq. 1) on the first body: tension pulls it along +n.
+    const BondSection s = bond_section(k, radius_multiplier);
+    const double intact = 1.0 - damage_value;
+    const double kn = c[bond_kn], ks = c[bond_ks];
+    const double normal_force = intact * kn * s.area * e.opening;
+    const Vec3 shear_force = (intact * ks * s.area) * e.slip;
+    const Vec3 couple = (intact * kn * s.inertia) * e.bend + (intact * ks * s.polar * theta_t) * k.normal;
+    return {shear_force + normal_force * k.normal, couple};
+  }
 
   /// Adds `force` (on the first body) to a bonded contact's load through its
   /// elastic displacements: Δu_n = ΔN/((1-D) k̄_n A), Δu_s = ΔV/((1-D) k̄_s A)
@@ -110,9 +193,30 @@ struct DamageBondLaw {
   }
 
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
+    double c[constants_size];
+    pair_constants(k, c);
+    return evaluate(k, c, history);
+  }
+
+  [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, const double* c, double* history) const noexcept {
+    rotate_in_plane_history<DamageBondLaw>(history, k);
+    return evaluate_in_plane(k, c, history);
+  }
+
+  /// The bond's elastic and plastic slip and bending and the linear contact's
+  /// shear force turn with the contact plane (RotatesInPlaneHistory). All of
+  /// them turn every step, bonded or not: a vector a law does not use at that
+  /// step is +0 (a new row, a broken bond's cleared columns, a linear shear
+  /// force that separate() reset), and the turn keeps +0 as +0 exactly
+  /// (rotate_into_contact_plane returns a zero vector as it is; the twirl adds
+  /// cos·(+0) = +0 and sin·(±0), and +0 + ±0 = +0, for cos > 0, i.e. a turn
+  /// below 90° per step), so the results are those of turning them only where used.
+  static constexpr std::array<std::size_t, 5> in_plane_history{slip, bend, plastic_slip, plastic_bend, linear_shear};
+
+  /// evaluate() for a history already carried into k's contact plane.
+  [[nodiscard]] [[gnu::always_inline]] ContactForce evaluate_in_plane(const ContactKinematics& k, const double* c, double* history) const noexcept {
     ContactForce out{};
-    const BondState s = bond_state(history);
-    if (is_bonded(s)) out = update_bond(k, history);
+    if (is_bonded(bond_state(history))) out = update_bond(k, c, history);
     // The linear contact acts once the bond is damaged or gone (§3.6).
     if (bond_state(history) == BondState::intact || k.overlap <= 0.0) {
       separate(history);
@@ -121,11 +225,37 @@ struct DamageBondLaw {
     const double kn = deformability_kn(k, emod);
     const LinearLaw linear{.kn = kn, .ks = kn / kratio, .friction = friction, .damping_ratio_normal = damping_ratio_normal,
                            .damping_ratio_shear = damping_ratio_shear};
-    out.on_first += linear.evaluate(k, history + linear_shear).on_first;
+    double linear_constants[LinearLaw::constants_size];
+    linear.pair_constants(k, linear_constants);
+    out.on_first += linear.evaluate_in_plane(k, linear_constants, history + linear_shear).on_first;
     return out;
   }
+
+  /// True when the elastic trial lies well inside the envelope, tested
+  /// without its divisions and square roots: |N|/N̄ <= 1/2, |V|/V̄ <= 1/2 and
+  /// |M̆|/M̃ <= 1/4 (in squares) give n² + v⁴/(1-n²) + m <= 0.584, far inside
+  /// outside_damage_envelope's first test (<= 1 - 1e-12) whatever the
+  /// round-off, so where this holds that test finds the trial inside as well.
+  /// False for NaN (then the full test decides, as before).
+  [[nodiscard]] bool surely_elastic(const Strain& e, const double* c, const ContactKinematics& k) const noexcept {
+    const double kn = c[bond_kn], ks = c[bond_ks];
+    const double sigma_0 = e.opening >= 0.0 ? tensile_strength : compressive_strength;
+    const double bend_stiffness = kn * (radius_multiplier * contact_min_radius(k));
+    return std::abs(kn * e.opening) <= 0.5 * sigma_0 && ks * ks * norm2(e.slip) <= 0.25 * cohesion * cohesion &&
+           bend_stiffness * bend_stiffness * norm2(e.bend) <= 0.0625 * tensile_strength * tensile_strength;
+  }
+
+ private:
+  /// Steps 2-4 of update_bond: the elastic trial in normalised coordinates
+  /// (the (1-D) factors cancel), the closest-point return (energy norm) with
+  /// the plastic increments it implies, and the damage (corrected Eq. 2,
+  /// never lowered). Updates e and the accumulated measures in h; returns D.
+  [[nodiscard]] double yield(Strain& e, const double* c, const ContactKinematics& k, double* h) const noexcept;
+
+  /// Step 5 of update_bond: clears the bond and labels its failure.
+  void break_bond(double elastic_opening, double* h) const noexcept;
 };
 
-static_assert(ContactLawKernel<DamageBondLaw>);
+static_assert(RotatesInPlaneHistory<DamageBondLaw> && SkipsIdleGaps<DamageBondLaw>);
 
 }  // namespace dfc::dem

@@ -24,6 +24,10 @@ struct AdvanceStatistics {
   std::int64_t advances = 0;    ///< successful advance requests
   std::int64_t steps = 0;       ///< solver steps they took
   double solver_seconds = 0.0;  ///< wall time inside SolverBackend::advance
+  /// The first advance alone: it carries one-time work (a DEM's first list
+  /// build and seam balance), so a short run's mean per advance overstates
+  /// the steady cost; the log line also gives the mean of the later ones.
+  double first_advance_seconds = 0.0;
 };
 [[nodiscard]] std::string_view session_state_name(SessionState state) noexcept;
 

@@ -1,0 +1,117 @@
+#!/bin/bash
+# The real workload's speed: the DEM of the paper-resolution open pile
+# (scenarios/open_pile_chalk.json, packing p1: damage_bond chalk in three
+# S zones, 549 635 spheres, the pile's 288 facets, local damping 0.7) and a
+# medium graded body cut from the same scenario (about 50 000 spheres, runs
+# in a minute or two), each built as dem_server builds it and stepped at rest
+# from its generated state, at 1 and 2 threads; beside them, in the same run,
+# the proxy (the peer packing bonded by linear_pbond, and by damage_bond).
+# Prints particle-steps/s, the ratio proxy/real per particle-step, the
+# 2-thread speed-up, the Amdahl serial fraction it implies, pairs and bonds per
+# particle, memory per particle, whether the thread counts gave the same bits,
+# and the paper model's projected run on this machine (docs/open_pile.md §5).
+#
+#   bench/paper_model.sh [BUILD_DIR]           (default build; builds dem_throughput and coupler)
+# Environment: MODELS ("medium paper"), THREADS ("1 2"), PAPER_STEPS (200),
+# MEDIUM_STEPS (1000), WARMUP (20: the first steps after the build rebuild the
+# lists and install nothing new), PEERS_DIR (the peer packing, as
+# bench/dem_peers.sh), RUN_STEPS (4.84e6: the paper run's DEM steps,
+# docs/open_pile.md §5), KEEP (a folder to keep the sections and logs in),
+# DEM_THROUGHPUT (another build's dem_throughput, to compare two versions on
+# the same sections; its state digests must then equal this build's).
+# Each model and thread count runs in a process of its own, so the memory
+# figure is that model's alone. Not part of the default test run (./vc bench).
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+BUILD=${1:-$ROOT/build}
+PEERS=${PEERS_DIR:-$ROOT/../shared/bench/peers}
+MODELS=${MODELS:-medium paper}
+THREADS=${THREADS:-1 2}
+PAPER_STEPS=${PAPER_STEPS:-200}; MEDIUM_STEPS=${MEDIUM_STEPS:-1000}; WARMUP=${WARMUP:-20}
+RUN_STEPS=${RUN_STEPS:-4.84e6}
+WORK=${KEEP:-$(mktemp -d)}
+mkdir -p "$WORK"
+PROXY_DATA=$PEERS/data/pack_12k.data
+
+[ -f "$BUILD/CMakeCache.txt" ] || cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$BUILD" --target dem_throughput coupler -j "$(nproc)" >/dev/null
+EXE=${DEM_THROUGHPUT:-$BUILD/bin/dem_throughput}
+
+# 1. The DEM sections as the coupler sends them (includes resolved, g·N added).
+"$BUILD/bin/coupler" expand "$ROOT/scenarios/open_pile_chalk.json" >"$WORK/paper_expanded.json"
+/usr/bin/python3 - "$WORK" <<'EOF'
+import json, math, sys
+work = sys.argv[1]
+scenario = json.load(open(f"{work}/paper_expanded.json"))[0]  # packing p1 (REV seed 7)
+g = scenario["gravity"]
+direction = g.get("direction", [0, 0, -1])
+norm = math.sqrt(sum(c * c for c in direction))
+section = scenario["participants"]["dem"]["config"]
+section["gravity_m_s2"] = [g.get("g_m_s2", 9.81) * g.get("g_level", 1) * c / norm for c in direction]
+json.dump(section, open(f"{work}/paper.json", "w"))
+# The medium body: the same generation, zones and pile, in a core 10.5 mm in
+# radius and 9 mm deep (the fine zone and the next, 63 000 spheres).
+section["particles"]["region"].update({"radius_m": 0.0105, "z_min_m": 0.111})
+json.dump(section, open(f"{work}/medium.json", "w"))
+EOF
+
+field() { sed -nE "s/.*$1.*/\\1/p" | head -n 1; }
+declare -A rate digest
+report=$WORK/report.txt
+: >"$report"
+for model in $MODELS; do
+  [ "$model" = paper ] && steps=$PAPER_STEPS || steps=$MEDIUM_STEPS
+  for t in $THREADS; do
+    log=$WORK/${model}_t$t.log
+    "$EXE" --section "$WORK/$model.json" --threads "$t" --warmup "$WARMUP" --steps "$steps" --digest >"$log" 2>&1 \
+      || { echo "paper_model.sh: the $model model at $t thread(s) failed (log $log):" >&2; tail -n 5 "$log" >&2; exit 1; }
+    line=$(grep "^threads " "$log")
+    rate[$model $t]=$(echo "$line" | field 'threads [0-9]+: ([0-9.eE+-]+) particle-steps.*')
+    digest[$model $t]=$(echo "$line" | field '.*state digest ([0-9a-f]+).*')
+    echo "$model $line" >>"$report"
+  done
+done
+
+# 2. The proxy in the same run: the peer packing (12 544 spheres) with every
+#    pair within 10 um bonded, by linear_pbond (what the kernels were tuned
+#    on) and by damage_bond, with the studies' local damping.
+if [ -f "$PROXY_DATA" ]; then
+  for law in linear_pbond damage_bond; do
+    log=$WORK/proxy_$law.log
+    "$EXE" --data "$PROXY_DATA" --law "$law" --local-damping 0.7 --threads "$THREADS" --warmup 1000 --steps 2000 >"$log" 2>&1 \
+      || { echo "paper_model.sh: the proxy ($law) failed (log $log)" >&2; exit 1; }
+    for t in $THREADS; do rate[proxy_$law $t]=$(grep "^threads $t:" "$log" | field 'threads [0-9]+: ([0-9.eE+-]+) particle-steps.*'); done
+    grep "^threads " "$log" | sed "s/^/proxy $law /" >>"$report"
+  done
+else
+  echo "paper_model.sh: no peer packing at $PROXY_DATA (set PEERS_DIR); the proxy columns are left out" >&2
+fi
+
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN{print (a > 0 && b > 0) ? a / b : "nan"}'; }
+printf "\n%-28s %8s %16s %14s %10s\n" model threads particle-steps/s proxy/real speed-up
+for model in $MODELS proxy_linear_pbond proxy_damage_bond; do
+  for t in $THREADS; do
+    r=${rate[$model $t]:-}
+    [ -n "$r" ] || continue
+    one=${rate[$model 1]:-0}
+    printf "%-28s %8s %16.3g %14s %10s\n" "$model" "$t" "$r" "$(ratio "${rate[proxy_linear_pbond $t]:-0}" "$r")" "$(ratio "$r" "$one")"
+  done
+done
+printf "\n%-28s %s\n" "damage_bond/linear_pbond" "proxy, per particle-step: $(for t in $THREADS; do printf "%s thread(s) %s  " "$t" "$(ratio "${rate[proxy_damage_bond $t]:-0}" "${rate[proxy_linear_pbond $t]:-0}")"; done)"
+for model in $MODELS; do
+  s2=$(ratio "${rate[$model 2]:-0}" "${rate[$model 1]:-0}")
+  # Amdahl: t2/t1 = f + (1 - f)/2, so f = 2 t2/t1 - 1 = 2/speed-up - 1.
+  printf "%-28s %s\n" "$model serial fraction" "$(awk -v s="$s2" 'BEGIN{print (s > 0) ? 2 / s - 1 : "nan"}') (Amdahl, from the 1- and 2-thread rates)"
+  same=yes
+  for t in $THREADS; do [ "${digest[$model $t]}" = "${digest[$model 1]}" ] || same=no; done
+  printf "%-28s %s\n" "$model same bits" "$same (state digests: $(for t in $THREADS; do printf "%s " "${digest[$model $t]}"; done))"
+done
+if [[ " $MODELS " == *" paper "* ]]; then
+  n=$(grep "^paper threads" "$report" | head -n 1 | sed -nE 's/.* steps of ([0-9]+) particles.*/\1/p')
+  for t in $THREADS; do
+    printf "%-28s %s\n" "paper run, $t thread(s)" "$(awk -v n="$n" -v s="$RUN_STEPS" -v r="${rate[paper $t]}" 'BEGIN{printf "%.1f days (%g steps x %d spheres at %.3g particle-steps/s)", n * s / r / 86400, s, n, r}')"
+  done
+fi
+printf "\nper run (pairs and bonds per particle, memory):\n"
+cat "$report"
+echo "(sections and logs: $WORK)"
