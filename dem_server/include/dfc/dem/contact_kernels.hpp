@@ -149,8 +149,10 @@ bool evaluate_pair_contacts(const PairLaws<Law>& laws, ParticleStore& p, PairCon
         // The history row of a pair a few ahead, every cache line of it: this
         // loop reads each row's first line (a bond's state) and the stages
         // below the rest, and in a model larger than the caches those lines
-        // come from memory (prefetch only: the same results).
-        if (k + pair_prefetch_distance < range_end) {
+        // come from memory (prefetch only: the same results). Bonded laws
+        // only: an unbonded row is 3 doubles, and there the prefetches cost
+        // more than they save (-4 to -5 % on the peer benchmark, docs/dem_benchmarks.md).
+        if (Law::bonded && k + pair_prefetch_distance < range_end) {
           const double* ahead = pairs.row(k + pair_prefetch_distance);
           for (std::size_t line = 0; line < pairs.stride; line += doubles_per_cache_line) __builtin_prefetch(ahead + line, 1);
           __builtin_prefetch(ahead + pairs.stride - 1, 1);
