@@ -1,5 +1,6 @@
 #include "dfc/dem/dem_backend.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -69,19 +70,42 @@ double profile_slice_height(const PcrmConfig& pcrm) {
 
 /// Stress profile of a generated body over horizontal slices
 /// (profile_slice_height; particle_stress.hpp), top first: depth below the
-/// surface, sigma_v, sigma_h; the sides moved in by two largest diameters
-/// (the boundary layer).
-void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, std::vector<protocol::Array>& arrays) {
+/// surface, sigma_v, sigma_h, the achieved K0 = sigma_h / sigma_v; the sides
+/// moved in by two largest diameters (the boundary layer). With the profile
+/// the body was generated for (`target`), a line on stderr gives each slice's
+/// errors and achieved K0, and says so when an interior slice (not the top or
+/// bottom one) is more than 5 % off: a body that is not at the geostatic state
+/// asked for is never left unsaid (docs/dem_generation.md, "Changing the g-level").
+void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, const StressProfile* target, std::vector<protocol::Array>& arrays) {
   const auto [lo, hi] = region_bounds(pcrm.region);
   const int slices = std::max(1, int(std::lround((hi.z - lo.z) / profile_slice_height(pcrm))));
   const SliceProfile profile = slice_profile(s, pcrm.region, slices, 4.0 * largest_radius(s.particles()));
-  std::vector<double> depth;
-  for (const double z : profile.z) depth.push_back(pcrm.profile.surface_z - z);
+  std::vector<double> depth, k0;
+  for (std::size_t k = 0; k < profile.z.size(); ++k) {
+    depth.push_back(pcrm.profile.surface_z - profile.z[k]);
+    k0.push_back(profile.sigma_v[k] != 0.0 ? profile.sigma_h[k] / profile.sigma_v[k] : 0.0);
+  }
   const auto k = std::int64_t(depth.size());
   arrays.push_back(protocol::Array::from_f64("profile_depth_m", {k}, depth));
   arrays.push_back(protocol::Array::from_f64("profile_sigma_v_pa", {k}, profile.sigma_v));
   arrays.push_back(protocol::Array::from_f64("profile_sigma_h_pa", {k}, profile.sigma_h));
+  arrays.push_back(protocol::Array::from_f64("profile_k0", {k}, k0));
   arrays.push_back(protocol::Array::from_f64("profile_porosity", {k}, profile.porosity));
+  if (target == nullptr || s.step_count() == 0) return;  // no contact force is known before the first step
+  std::ostringstream line;
+  line.precision(3);
+  double worst = 0.0;
+  for (std::size_t j = 0; j < depth.size(); ++j) {
+    const double v = target->vertical(profile.z[j]), h = target->horizontal(profile.z[j]);
+    const double ev = profile.sigma_v[j] / v - 1.0, eh = profile.sigma_h[j] / h - 1.0;
+    if (j > 0 && j + 1 < depth.size()) worst = std::max({worst, std::abs(ev), std::abs(eh)});
+    line << (j == 0 ? "" : "; ") << 1e3 * depth[j] << " mm: sigma_v " << 100.0 * ev << " %, sigma_h " << 100.0 * eh << " %, K0 " << k0[j];
+  }
+  std::cerr << "dem_server: generated body at step " << s.step_count() << ", stress per slice one REV cell high against gamma z and K0 gamma z (K0 "
+            << target->k0 << " asked): " << line.str() << std::endl;
+  if (worst > 0.05)
+    std::cerr << "dem_server: warning: at step " << s.step_count() << " an interior slice of the generated body is " << 100.0 * worst
+              << " % off the geostatic state asked for (more than 5 %); the achieved K0 per slice is the snapshot's profile_k0" << std::endl;
 }
 
 }  // namespace
@@ -353,7 +377,7 @@ std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
     arrays.push_back(protocol::Array::from_i64("particle_material", {n}, material));
   }
   if (s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
-  if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, arrays);
+  if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, model_.generation ? &model_.generation->profile : nullptr, arrays);
   if (!s.walls().empty()) {
     std::vector<Vec3> vertices;
     std::vector<std::int64_t> facets;

@@ -229,12 +229,18 @@ const SectionDeclaration& radius_expansion_generator_keys() {
 const SectionDeclaration& pcrm_rev() {
   static const SectionDeclaration s{
       .name = "dem.particles.pcrm.rev",
-      .doc = "the REV: a radius expansion in a periodic cell, the servo to sigma_ref on z and K0 sigma_ref on x and y, bonds, the servo again",
+      .doc = "the REV: a radius expansion in a periodic cell, the servo to the installation stress, bonds, the servo to sigma_ref on z and K0 "
+             "sigma_ref on x and y",
       .parameters =
           [] {
             std::vector<P> keys = radius_expansion_keys();
             keys.push_back(times_s(P::vector3("cell_m", "m", "edges of the cell [lx, ly, lz] at S = 1").positive()));
             keys.push_back(P::number("stress_pa", "Pa", "sigma_ref on z").positive().optional("sigma_v at the region's mid-depth"));
+            keys.push_back(P::number("installation_stress_pa", "Pa",
+                                     "isotropic stress at which the unbonded packing is consolidated and its bonds installed (Potyondy & Cundall "
+                                     "2004, section 3.1): a property of the rock's genesis, independent of sigma_ref and the g-level")
+                               .positive()
+                               .fallback(kDefaultRevInstallationStress));
             keys.push_back(P::object("servo", servo()).optional("the servo's defaults"));
             keys.push_back(P::object("consolidation", equilibrium_target()).optional("the target's defaults (both servo stages)"));
             return keys;

@@ -52,6 +52,7 @@ PcrmConfig read_pcrm(ConfigReader& particles, double scale_factor, double densit
     c.rev.cell.periodic = {true, true, true};
     if (rev.has("stress_pa")) c.reference_stress = rev.number("stress_pa");
     else rev.accept("stress_pa");
+    c.rev.installation_stress = rev.number("installation_stress_pa");
     PeriodicConfig servo;
     if (auto s = rev.optional_child("servo")) read_servo(std::move(*s), servo);
     c.rev.servo_gain = servo.servo_gain;

@@ -22,6 +22,25 @@ double grown_critical_step(const Simulation& sim, const std::vector<double>& fin
   return critical_timestep(grown, laws);
 }
 
+/// Stops every particle. Used before the bonds are installed: an intact bond's
+/// force is its stored history alone, so installing them removes every
+/// contact force of the consolidated packing, which is then in equilibrium at
+/// zero stress, and only the servo's leftover motion (the stage stops at an
+/// unbalanced-force ratio of a few per cent) would still load the new bonds.
+/// Measured on the chalk REV consolidated at 100 kPa: that motion yielded 5
+/// or 6 bonds and left about 30 Pa in the cell whatever sigma_ref, 13 % of the
+/// reference stress of the small model at 1 g, copied unscaled into the body
+/// (stress_scaling.hpp scales intact bonds only). At rest they are installed
+/// unloaded, as the law's rule and Potyondy & Cundall (2004, §3.1: bonds on
+/// a packing in static equilibrium) mean, and nothing is locked in.
+void bring_to_rest(Simulation& sim) {
+  ParticleStore& p = sim.particles_for_edit();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.velocity[i] = {};
+    p.angular_velocity[i] = {};
+  }
+}
+
 /// The pairs with a history, their images across the cell faces, and the rows.
 void collect_pairs(const Simulation& sim, PreparedRev& rev) {
   const PairContacts& pairs = sim.pair_contacts();
@@ -76,15 +95,18 @@ PreparedRev prepare_rev(const RevSpec& spec, SimulationSettings settings, const 
   const double max_rate = spec.max_strain_rate.value_or(1e-4 / rev.dt);
   const std::string servo_key = key + ".servo";
   // 1-2: unbonded, PFC's order (Potyondy & Cundall 2004 §3.1), isotropic at
-  // the mean stress of sigma_ref: a loose frictional packing held at a
-  // deviatoric K0 state creeps and never settles to the servo's tolerance.
+  // the installation stress sigma_0, whatever sigma_ref (rev_preparation.hpp):
+  // a loose frictional packing held at a deviatoric K0 state creeps and never
+  // settles to the servo's tolerance.
   const ExpansionReport expansion = expand_radii(sim, packing.final_radius, spec.particles, spec.fraction_of_critical, spec.cell.volume());
   ConsolidationSpec isotropic = spec.consolidation;
   const CellLoading& target = spec.consolidation.loading;
   isotropic.loading = {.mode = CellLoading::Mode::isotropic, .axis = target.axis,
-                       .stress = target.stress * (1.0 + 2.0 * target.lateral_ratio) / 3.0, .lateral_ratio = 1.0, .axial_rate = 0.0, .strain_rate = {}};
+                       .stress = spec.installation_stress, .lateral_ratio = 1.0, .axial_rate = 0.0, .strain_rate = {}};
   const Consolidation unbonded = consolidate(sim, isotropic, spec.servo_gain, max_rate, rev.dt, key + ".consolidation", servo_key);
-  // 3-4: bonded, then loaded to sigma_ref: the bonds carry the deviator.
+  // 3-4: bonded at rest, then loaded to sigma_ref: the bonds carry it all,
+  // elastically, so the REV's state is proportional to sigma_ref.
+  bring_to_rest(sim);
   install_bonds(sim, rev.dt);
   const Consolidation bonded =
       consolidate(sim, spec.consolidation, spec.servo_gain, max_rate, rev.dt, key + ".consolidation (bonded stage)", servo_key);

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/bond_state.hpp"
 
 namespace dfc::dem {
 
@@ -17,11 +18,18 @@ CellStress measure_cell_stress(const Simulation& sim) {
   double r_max = 0.0;
   for (const double r : p.radius) r_max = std::max(r_max, r);
   const double kn = sim.settings().particle_law.stiffness_bound(r_max).normal;
+  // A bond resists the next strain increment whether or not it carries load:
+  // one installed with zero load (sample_preparation.hpp) has no force yet but
+  // its full stiffness. Counting only the pairs in force gave K_a = 0 right
+  // after the installation, and the servo then strained the bonded cell at its
+  // cap (1e-4 per step: about E 1e-4 ~ 0.1 MPa of stress in one step, whatever
+  // the target), which at a low target overshot it many times and yielded bonds.
+  const bool bonded_law = sim.settings().particle_law.bonded() && pairs.stride > 0;
   CellStress s;
   const auto count = std::min(pairs.size(), out.force.size());
   for (std::size_t k = 0; k < count; ++k) {
     const Vec3 f = out.force[k];
-    if (f == Vec3{}) continue;
+    if (f == Vec3{} && !(bonded_law && is_bonded(bond_state(pairs.history.data() + k * pairs.stride)))) continue;
     const Vec3 d = space.branch(p.position[pairs.first[k]], p.position[pairs.second[k]]);
     const double fa[3] = {f.x, f.y, f.z};
     const double da[3] = {d.x, d.y, d.z};

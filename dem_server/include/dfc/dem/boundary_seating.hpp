@@ -16,7 +16,10 @@
 // spheres carry the face's whole force from the start: a body that first had
 // to settle onto its floor would hang part of its weight on the side walls by
 // friction. A sphere moves only if its path is free: no other sphere that it
-// would come closer to and overlap. Bond loads
+// would come closer to and overlap. A sphere that the trimming left
+// overlapping the wall (by at most wall_contact_overlap_fraction of its
+// radius) is backed off to touching and pressed the same way: its overlap
+// would otherwise be a force that does not follow the g-level. Bond loads
 // are stored history (stress_scaling.hpp), so moving a sphere does not change
 // them; only its contact with the wall is new. The equilibration after
 // generation evens out the shares. Done before the first step: on the rigid

@@ -23,7 +23,8 @@ struct CellStress {
   /// Pa, d sigma_aa / d(compressive strain_aa) if every contact in force
   /// followed the affine motion: (1/V) sum_c k_n d_a^2 n_a^2 with k_n the law's
   /// normal stiffness bound (an upper bound of the true modulus, so a servo
-  /// gain taken from it errs on the stable side).
+  /// gain taken from it errs on the stable side); c runs over the contacts in
+  /// force and every bond (intact or damaged), loaded or not.
   Vec3 affine_stiffness;
 
   [[nodiscard]] double mean() const noexcept { return (sigma[0][0] + sigma[1][1] + sigma[2][2]) / 3.0; }

@@ -7,10 +7,22 @@
 //
 // Stages, each an existing preparation step (docs/dem_generation.md §1):
 //   1. radius expansion to the target porosity in a periodic cell (unbonded);
-//   2. isotropic servo consolidation to the mean stress p_ref = (1 + 2 K0)
-//      sigma_ref / 3 of the reference state (a loose frictional packing held
-//      at a deviatoric state creeps and does not settle);
-//   3. bonds within the bond gap, installed with zero load (the law's rule);
+//   2. isotropic servo consolidation to the installation stress sigma_0
+//      (Potyondy & Cundall 2004, doi 10.1016/j.ijrmms.2004.09.011, §3.1
+//      step 2: the packing is brought to a low isotropic stress, the same for
+//      every test, before the bonds are installed). Unbonded, the packing
+//      must compact from the expansion's loose state to a jammed one, and the
+//      servo's compaction speed is proportional to the stress it aims at
+//      (its strain step is the stress error over the stiffness): at the
+//      mid-depth stress of a model at 10 g it never settled. At a fixed
+//      sigma_0 the packing, its porosity and its steps are the same at every
+//      g-level (docs/dem_generation.md, "Changing the g-level"). Isotropic:
+//      a loose frictional packing held at a deviatoric K0 state creeps and
+//      does not settle;
+//   3. bonds within the bond gap, installed with zero load (the law's rule):
+//      the packing's contact forces at sigma_0 leave with the installation
+//      (an intact bond's force is its stored history alone), so nothing of
+//      sigma_0 is locked in;
 //   4. servo to the reference stress, now bonded: sigma_ref on z and
 //      K0 sigma_ref on x and y (scaling it by a depth factor later gives
 //      sigma_h = K0 sigma_v at every depth). The bonds take it up
@@ -37,6 +49,7 @@ struct RevSpec {
   double density = 0.0;                 ///< kg/m3, solid
   double servo_gain = sections::kDefaultServoGain;
   std::optional<double> max_strain_rate;  ///< 1/s; default 1e-4 / dt
+  double installation_stress = sections::kDefaultRevInstallationStress;  ///< Pa, isotropic, of stage 2 (unbonded)
   ConsolidationSpec consolidation;      ///< stopping rule of both servo stages; loading: anisotropic sigma_ref
   double fraction_of_critical = sections::kDefaultFractionOfCritical;
 };

@@ -27,5 +27,10 @@ inline constexpr double kDefaultEquilibriumTolerance = 0.01;         ///< <stage
 inline constexpr double kDefaultEquilibriumUnbalancedForceRatio = 0.01;  ///< <stage>.unbalanced_force_ratio
 inline constexpr std::int64_t kDefaultEquilibriumMaxSteps = 200000;     ///< <stage>.max_steps
 inline constexpr std::int64_t kDefaultEquilibriumCheckEvery = 100;      ///< <stage>.check_every
+/// particles.rev.installation_stress_pa: the isotropic stress at which the
+/// REV's unbonded packing is consolidated before its bonds are installed
+/// (Potyondy & Cundall 2004 §3.1, step 2), the same at every g-level
+/// (docs/dem_generation.md, "Changing the g-level").
+inline constexpr double kDefaultRevInstallationStress = 1e5;         ///< Pa
 
 }  // namespace dfc::sections
