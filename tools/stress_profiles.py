@@ -7,12 +7,23 @@ the group /profiles/ with, against depth below the surface:
 
   depth_m                       slice centres (the DEM's horizontal slices, one REV cell of the coarsest zone high)
   sigma_v_pa, sigma_h_pa        DEM: Love-Weber stress of the particles in each slice (compression positive)
+  k0                            DEM: the achieved K0 = sigma_h / sigma_v of each slice
   sigma_v_fdm_pa, sigma_h_fdm_pa  FDM: mean stress of each layer of zones, interpolated to the slice depths
   sigma_v_theory_pa, sigma_h_theory_pa  gamma (z_s - z) + q and K0 times it (gamma, K0, q as generated)
+  thin/depth_m, thin/sigma_v_pa, thin/sigma_h_pa, thin/k0
+                                the same DEM profile over slices --slices-per-cell times thinner
+                                (default 2: half a REV cell), summed here from the particles'
+                                stress (particle_stress_pa) as the DEM sums its own slices
 
 all from the last snapshot, and a PNG of them (as Fig. 3 of Zheng et al. 2023, docs/references.md).
+The group's attributes sigma_v_error_max and sigma_h_error_max are the largest
+|sigma / theory - 1| over the interior slices of both profiles (the top and
+bottom REV-cell slice left out; of the thin slices, those nearer than two
+largest diameters to the region's top or bottom, listed in thin/interior),
+so a script can refuse a run that started from a wrong state; a line
+on stderr says when one exceeds 5 % (docs/dem_generation.md, "Changing the g-level").
 
-    tools/stress_profiles.py RESULTS.h5 [--png FILE]
+    tools/stress_profiles.py RESULTS.h5 [--png FILE] [--slices-per-cell N]
 
 Exit 0 after writing, 3 when the file has no generated DEM body (nothing to
 do), 2 on bad input.
@@ -50,11 +61,55 @@ def fdm_profile(snapshot, depth, surface_z):
     return (np.interp(depth, layers, v, left=np.nan, right=np.nan), np.interp(depth, layers, h, left=np.nan, right=np.nan))
 
 
+def thin_profile(dem, region, slices, surface_z):
+    """Depth, sigma_v, sigma_h (compression positive) of horizontal slices of a
+    cylinder or box region, its sides moved in by two largest diameters: the
+    particles' Love-Weber stress times their volume, summed per slice by their
+    centres, over the slice's volume (the DEM's own slice_profile, particle_stress.hpp)."""
+    x = dem["particle_position"][()].reshape(-1, 3)
+    r = dem["particle_radius"][()]
+    s = dem["particle_stress_pa"][()].reshape(-1, 6)  # xx, xy, xz, yy, yz, zz
+    margin = 4.0 * r.max()
+    if region["type"] == "cylinder":
+        lo, hi = region["z_min_m"], region["z_max_m"]
+        radius = region["radius_m"] - margin
+        axis = region.get("axis_m", [0.0, 0.0])
+        inside = np.hypot(x[:, 0] - axis[0], x[:, 1] - axis[1]) < radius
+        area = np.pi * radius * radius
+    else:
+        lo, hi = region["min_m"][2], region["max_m"][2]
+        a, b = np.asarray(region["min_m"][:2]) + margin, np.asarray(region["max_m"][:2]) - margin
+        inside = np.all((x[:, :2] >= a) & (x[:, :2] < b), axis=1)
+        area = float(np.prod(b - a))
+    height = (hi - lo) / slices
+    inside &= (x[:, 2] >= lo) & (x[:, 2] < hi)
+    k = np.minimum(slices - 1, np.floor((hi - x[:, 2]) / height)).astype(int)[inside]  # slice 0 at the top
+    v = (4.0 / 3.0 * np.pi * r ** 3)[inside]
+    sv, sh = np.zeros(slices), np.zeros(slices)
+    np.add.at(sv, k, v * s[inside, 5])
+    np.add.at(sh, k, v * 0.5 * (s[inside, 0] + s[inside, 3]))
+    top = hi - np.arange(slices) * height
+    # Interior: the slice lies two largest diameters or more from the region's
+    # top and bottom, the margin of its sides (the free surface, where sigma
+    # tends to 0, and the floor's boundary layer).
+    interior = np.nonzero((top <= hi - margin) & (top - height >= lo + margin))[0]
+    return surface_z - (top - 0.5 * height), sv / (area * height), sh / (area * height), interior
+
+
+def worst_error(sigma, theory, interior):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = np.abs(sigma[interior] / theory[interior] - 1.0)
+    return float(np.nanmax(e)) if e.size else float("nan")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("results", help="results.h5 of a run with a generated (pcrm) DEM body")
     parser.add_argument("--png", help="plot file (default: profiles.png beside the results)")
+    parser.add_argument("--slices-per-cell", type=int, default=2, help="thin profile: slices per REV-cell slice (default 2)")
     args = parser.parse_args(argv)
+    if args.slices_per_cell < 1:
+        parser.error("--slices-per-cell must be at least 1")
     try:
         f = h5py.File(args.results, "r+")
     except OSError as e:
@@ -76,6 +131,15 @@ def main(argv=None):
         gamma, k0, q = generation["unit_weight_n_m3"], generation["k0"], generation["surcharge_pa"]
         out["sigma_v_theory_pa"] = gamma * depth + q
         out["sigma_h_theory_pa"] = k0 * out["sigma_v_theory_pa"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out["k0"] = out["sigma_h_pa"] / out["sigma_v_pa"]
+        thin = None
+        region = json.loads(f.attrs["scenario"])["participants"]["dem"]["config"]["particles"]["region"] if "scenario" in f.attrs else None
+        if region is not None and "particle_stress_pa" in dem:
+            n = args.slices_per_cell * len(depth)
+            d, v, h, inner = thin_profile(dem, region, n, generation["surface_z_m"])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                thin = {"depth_m": d, "sigma_v_pa": v, "sigma_h_pa": h, "k0": h / v}
         continuum = last_snapshot(f, "continuum")
         if continuum is not None and "zone_stress" in continuum:
             out["sigma_v_fdm_pa"], out["sigma_h_fdm_pa"] = fdm_profile(continuum, depth, generation["surface_z_m"])
@@ -85,7 +149,29 @@ def main(argv=None):
         group.attrs["snapshot_time_s"] = dem.attrs.get("time", np.nan)
         for name, values in out.items():
             ds = group.create_dataset(name, data=np.asarray(values, dtype=np.float64))
-            ds.attrs["unit"] = "m" if name == "depth_m" else "Pa"
+            ds.attrs["unit"] = "m" if name == "depth_m" else "-" if name == "k0" else "Pa"
+        # Interior: without the top and bottom REV-cell slice (the free
+        # surface and the floor's boundary layer), the criterion of the
+        # generation tests.
+        interior = np.arange(len(depth))[1:-1]
+        errors = {"sigma_v": worst_error(out["sigma_v_pa"], out["sigma_v_theory_pa"], interior),
+                  "sigma_h": worst_error(out["sigma_h_pa"], out["sigma_h_theory_pa"], interior)}
+        if thin is not None:
+            sub = group.create_group("thin")
+            sub.attrs["slices_per_cell"] = args.slices_per_cell
+            sub.create_dataset("interior", data=np.asarray(inner, dtype=np.int64))
+            for name, values in thin.items():
+                ds = sub.create_dataset(name, data=np.asarray(values, dtype=np.float64))
+                ds.attrs["unit"] = "m" if name == "depth_m" else "-" if name == "k0" else "Pa"
+            theory = gamma * thin["depth_m"] + q
+            errors["sigma_v"] = float(np.nanmax([errors["sigma_v"], worst_error(thin["sigma_v_pa"], theory, inner)]))
+            errors["sigma_h"] = float(np.nanmax([errors["sigma_h"], worst_error(thin["sigma_h_pa"], k0 * theory, inner)]))
+            out["thin"] = thin
+        for name, e in errors.items():
+            group.attrs[name + "_error_max"] = e
+            if e > 0.05:
+                print(f"stress_profiles.py: {args.results}: {name} is off its theory by up to {100 * e:.1f} % at an interior slice "
+                      f"(more than 5 %): the body is not at the geostatic K0 state asked for", file=sys.stderr)
     png = args.png or str(args.results).rsplit("/", 1)[0] + "/profiles.png" if "/" in str(args.results) else "profiles.png"
     plot(out, png)
     print(f"stress_profiles.py: wrote /profiles/ in {args.results} and {png}")
@@ -102,6 +188,10 @@ def plot(out, png):
     ax.plot(1e-3 * out["sigma_h_theory_pa"], d, "k--", label="$\\sigma_h$ theory ($K_0 \\sigma_v$)")
     ax.plot(1e-3 * out["sigma_v_pa"], d, "o", color="tab:blue", label="$\\sigma_v$ DEM")
     ax.plot(1e-3 * out["sigma_h_pa"], d, "s", color="tab:orange", label="$\\sigma_h$ DEM")
+    if "thin" in out:
+        t = out["thin"]
+        ax.plot(1e-3 * t["sigma_v_pa"], 1e3 * t["depth_m"], ".", color="tab:blue", alpha=0.5, label="$\\sigma_v$ DEM, thin slices")
+        ax.plot(1e-3 * t["sigma_h_pa"], 1e3 * t["depth_m"], ".", color="tab:orange", alpha=0.5, label="$\\sigma_h$ DEM, thin slices")
     if "sigma_v_fdm_pa" in out:
         ax.plot(1e-3 * out["sigma_v_fdm_pa"], d, "x", color="tab:blue", label="$\\sigma_v$ FDM")
         ax.plot(1e-3 * out["sigma_h_fdm_pa"], d, "+", color="tab:orange", label="$\\sigma_h$ FDM")

@@ -21,20 +21,23 @@ SimulationSettings settings() {
   return SimulationSettings{.particle_law = test::chalk_at_s10(), .gravity = {}, .local_damping = 0.7, .skin = 0.0, .threads = 1};
 }
 
-/// About 250 spheres of the chalk PSD at S = 10 in an 8 mm cell, at 100 kPa on
-/// z and K0 = 0.5.
+/// About 250 spheres of the chalk PSD at S = 10 in an 8 mm cell, at sigma_ref
+/// (Pa) on z and K0 = 0.5.
+PreparedRev chalk_rev(double sigma_ref) {
+  RevSpec spec;
+  spec.particles = {.radius_min = 3.275e-4, .radius_max = 9.025e-4, .porosity = 0.45, .multiplier = 1.6, .stages = 10, .relax_steps = 300, .seed = 5};
+  spec.cell = {.lo = {}, .hi = {8e-3, 8e-3, 8e-3}, .periodic = {true, true, true}, .strain_rate = {}};
+  spec.density = 2556;
+  spec.consolidation.tolerance = 0.02;
+  spec.consolidation.unbalanced_force_ratio = 0.05;
+  spec.consolidation.loading = {.mode = CellLoading::Mode::anisotropic, .axis = 2, .stress = sigma_ref, .lateral_ratio = 0.5, .axial_rate = 0.0, .strain_rate = {}};
+  spec.fraction_of_critical = 0.3;
+  return prepare_rev(spec, settings(), "particles.rev");
+}
+
+/// The REV at 100 kPa.
 const PreparedRev& rev() {
-  static const PreparedRev prepared = [] {
-    RevSpec spec;
-    spec.particles = {.radius_min = 3.275e-4, .radius_max = 9.025e-4, .porosity = 0.45, .multiplier = 1.6, .stages = 10, .relax_steps = 300, .seed = 5};
-    spec.cell = {.lo = {}, .hi = {8e-3, 8e-3, 8e-3}, .periodic = {true, true, true}, .strain_rate = {}};
-    spec.density = 2556;
-    spec.consolidation.tolerance = 0.02;
-    spec.consolidation.unbalanced_force_ratio = 0.05;
-    spec.consolidation.loading = {.mode = CellLoading::Mode::anisotropic, .axis = 2, .stress = 1e5, .lateral_ratio = 0.5, .axial_rate = 0.0, .strain_rate = {}};
-    spec.fraction_of_critical = 0.3;
-    return prepare_rev(spec, settings(), "particles.rev");
-  }();
+  static const PreparedRev prepared = chalk_rev(1e5);
   return prepared;
 }
 
@@ -58,6 +61,31 @@ TEST(Pcrm, TheRevCarriesItsReferenceStressInItsBonds) {
   EXPECT_NEAR(r.stress.y, 0.5e5, 0.02 * 0.5e5);
   EXPECT_GT(r.bonds, std::int64_t(r.spheres.size()));  // coordination above 2
   for (const RevPair& p : r.pairs) EXPECT_LT(p.first, p.second);
+}
+
+TEST(Pcrm, TheRevIsTheSameStateScaledAtAnyReferenceStress) {
+  // 300 Pa: about the mid-depth sigma_v of the small chalk model (32 mm deep)
+  // at 1.4 g; 100 kPa: at 450 g. The unbonded packing is consolidated at the
+  // installation stress whatever sigma_ref, and the bonds are installed at
+  // rest with zero load (rev_preparation.hpp), so the bonded stage loads an
+  // elastic network from zero: while no bond yields its state is linear in
+  // the load (damage_bond_law.hpp, Eq. 1) and the servo, whose step is the
+  // stress error over the network's stiffness (cell_servo.hpp), takes the
+  // same steps whatever the target. Before, stage 2 ran at the mean of
+  // sigma_ref: at the stress of 10 g it did not converge in 200 000 steps.
+  const PreparedRev low = chalk_rev(300.0);
+  const PreparedRev& high = rev();
+  EXPECT_NEAR(low.stress.z, 300.0, 0.02 * 300.0);  // the servo's tolerance
+  EXPECT_NEAR(low.stress.x, 150.0, 0.02 * 150.0);
+  EXPECT_NEAR(low.stress.y, 150.0, 0.02 * 150.0);
+  EXPECT_EQ(low.damaged_bonds, 0);  // nothing locked in by the installation
+  // The same packing, its porosity apart by the bonded stage's elastic
+  // volumetric strain, about 2 sigma_ref / E = 1.2e-4 at 100 kPa (measured on
+  // the body: 3e-5 between 220 Pa and 44 kPa), and the same bonds.
+  EXPECT_NEAR(low.porosity, high.porosity, 3e-4);
+  EXPECT_EQ(low.bonds + low.damaged_bonds, high.bonds + high.damaged_bonds);
+  // Steps: the same count but for the last check interval (100 steps) of the bonded stage.
+  EXPECT_NEAR(double(low.steps), double(high.steps), 0.02 * double(high.steps));
 }
 
 TEST(Pcrm, ReplicatedTwiceEachWayTheBodyHasTheRevsStressAndEquilibrium) {

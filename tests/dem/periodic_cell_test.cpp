@@ -119,6 +119,28 @@ TEST(PeriodicCell, BondAcrossTheFaceIsInstalledAndSurvivesWraps) {
   EXPECT_LT(std::abs(gap - 0.25 * unit), 0.25 * unit);
 }
 
+TEST(CellStress, ABondInstalledWithZeroLoadCountsInTheAffineStiffness) {
+  // A bond installed with zero load (sample_preparation.hpp) carries no force
+  // but resists the next strain with its whole stiffness: the servo's
+  // stiffness K_a must count it. Left out (it was), K_a was 0 after the
+  // installation and the servo strained the bonded cell at its cap.
+  const ContactLawSetting law = make_contact_law({{"law", "linear_pbond"}, {"emod_pa", 1e6}, {"pb_emod_pa", 1e6}, {"pb_ten_pa", 1e12},
+                                                  {"pb_coh_pa", 1e12}, {"bond_gap_m", 0.5 * unit}});
+  // Along x, surface gap 0.25 unit: bonded at the first rebuild, with zero load.
+  Simulation sim = pair(law, {20 * unit, 20 * unit, 20 * unit}, {28.25 * unit, 20 * unit, 20 * unit}, true);
+  sim.install_bonds_now();
+  sim.step(1e-9);
+  ASSERT_EQ(sim.bond_counts().intact, 1);
+  const CellStress s = measure_cell_stress(sim);
+  EXPECT_EQ(s.sigma[0][0], 0.0);
+  // k_n d_x^4 / |d|^2 / V with the law's normal stiffness bound: the branch
+  // lies along x, so only K_xx is non-zero.
+  const double d = 8.25 * unit, kn = law.stiffness_bound(radius).normal;
+  EXPECT_NEAR(s.affine_stiffness.x, kn * d * d / (cell_edge * cell_edge * cell_edge), 1e-12 * s.affine_stiffness.x);
+  EXPECT_EQ(s.affine_stiffness.y, 0.0);
+  EXPECT_EQ(s.affine_stiffness.z, 0.0);
+}
+
 TEST(CellStress, SimpleCubicLatticeUnderUniformCompressionMatchesTheClosedForm) {
   // n^3 spheres of radius r at pitch a = 2r - delta fill the cell n a: each
   // sphere has 6 contacts of force k delta along +-x, y, z; per sphere (volume
