@@ -15,8 +15,9 @@
 # Environment: MODELS ("medium paper"), THREADS ("1 2"), PAPER_STEPS (200),
 # MEDIUM_STEPS (1000), WARMUP (20: the first steps after the build rebuild the
 # lists and install nothing new), PEERS_DIR (the peer packing, as
-# bench/dem_peers.sh), RUN_STEPS (4.84e6: the paper run's DEM steps,
-# docs/open_pile.md §5), KEEP (a folder to keep the sections and logs in),
+# bench/dem_peers.sh), RUN_STEPS (the paper run's DEM steps; by default its
+# 20 mm at 0.5 m/s in the built model's time step, plus ramp and
+# equilibrium: docs/open_pile.md §5), KEEP (a folder to keep the sections and logs in),
 # DEM_THROUGHPUT (another build's dem_throughput, to compare two versions on
 # the same sections; its state digests must then equal this build's).
 # Each model and thread count runs in a process of its own, so the memory
@@ -28,7 +29,7 @@ PEERS=${PEERS_DIR:-$ROOT/../shared/bench/peers}
 MODELS=${MODELS:-medium paper}
 THREADS=${THREADS:-1 2}
 PAPER_STEPS=${PAPER_STEPS:-200}; MEDIUM_STEPS=${MEDIUM_STEPS:-1000}; WARMUP=${WARMUP:-20}
-RUN_STEPS=${RUN_STEPS:-4.84e6}
+RUN_STEPS=${RUN_STEPS:-}
 WORK=${KEEP:-$(mktemp -d)}
 mkdir -p "$WORK"
 PROXY_DATA=$PEERS/data/pack_12k.data
@@ -49,6 +50,13 @@ norm = math.sqrt(sum(c * c for c in direction))
 section = scenario["participants"]["dem"]["config"]
 section["gravity_m_s2"] = [g.get("g_m_s2", 9.81) * g.get("g_level", 1) * c / norm for c in direction]
 json.dump(section, open(f"{work}/paper.json", "w"))
+# The run's DEM steps besides the jacking's: the ramp and the generation's
+# equilibrium before the pile starts (about 1 900 steps in the paper-geometry
+# model, docs/dem_generation.md §6); the jacking's own follow from dt.
+pile = section["pile"]
+speed = math.sqrt(sum(c * c for c in pile["velocity_m_s"]))
+with open(f"{work}/run.txt", "w") as out:
+    print(scenario["run"]["stop_when"]["at_least"], speed, pile.get("ramp_steps", 0) + 1900, file=out)
 # The medium body: the same generation, zones and pile, in a core 10.5 mm in
 # radius and 9 mm deep (the fine zone and the next, 63 000 spheres).
 section["particles"]["region"].update({"radius_m": 0.0105, "z_min_m": 0.111})
@@ -108,6 +116,12 @@ for model in $MODELS; do
 done
 if [[ " $MODELS " == *" paper "* ]]; then
   n=$(grep "^paper threads" "$report" | head -n 1 | sed -nE 's/.* steps of ([0-9]+) particles.*/\1/p')
+  dt=$(grep "^paper threads" "$report" | head -n 1 | sed -nE 's/.* dt ([0-9.eE+-]+) s.*/\1/p')
+  # The run's steps: travel / speed / dt of the scenario's time step (its
+  # timestep.stiffness_bound), plus the ramp and the equilibrium (run.txt).
+  read -r travel speed extra <"$WORK/run.txt"
+  [ -n "$RUN_STEPS" ] || RUN_STEPS=$(awk -v l="$travel" -v v="$speed" -v dt="$dt" -v e="$extra" 'BEGIN{printf "%.4g", l / v / dt + e}')
+  printf "%-28s %s\n" "paper run steps" "$RUN_STEPS ($travel m at $speed m/s in steps of $dt s, plus $extra steps of ramp and equilibrium)"
   for t in $THREADS; do
     printf "%-28s %s\n" "paper run, $t thread(s)" "$(awk -v n="$n" -v s="$RUN_STEPS" -v r="${rate[paper $t]}" 'BEGIN{printf "%.1f days (%g steps x %d spheres at %.3g particle-steps/s)", n * s / r / 86400, s, n, r}')"
   done

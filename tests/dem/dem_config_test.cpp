@@ -31,6 +31,24 @@ TEST(DemConfig, TheTestBedIsValidAndUsesTheDefaults) {
   EXPECT_EQ(c.threads, 0);
 }
 
+// timestep.stiffness_bound: per_particle unless the older bound is asked for;
+// the model's step follows it (the bed's radii 4.5-5 mm: sqrt(5/4.5) apart,
+// timestep.hpp); any other value is refused naming the key.
+TEST(DemConfig, StiffnessBoundChoosesTheStepAndNamesItsKey) {
+  nlohmann::json c = test::box_bed_config();
+  c["contact"] = {{"law", "damage_bond"}, {"emod_pa", 1e8}, {"bond_emod_pa", 1e8}, {"ten_pa", 1e6}, {"com_pa", 1e7}, {"coh_pa", 1e6},
+                  {"ucn_m", 1e-4}, {"ucs_m", 1e-4}, {"theta_c_rad", 0.01}};
+  const DemModel per_particle = build_model(parse_dem_config(c));
+  EXPECT_EQ(parse_dem_config(c).timestep.step_bound, StepBound::per_particle);
+  c["timestep"]["stiffness_bound"] = "largest_radius";
+  EXPECT_EQ(parse_dem_config(c).timestep.step_bound, StepBound::largest_radius);
+  const DemModel largest = build_model(parse_dem_config(c));
+  EXPECT_GT(per_particle.dt_critical, largest.dt_critical);
+  EXPECT_NEAR(per_particle.simulation->critical_timestep(), per_particle.dt_critical, 1e-15);
+  c["timestep"]["stiffness_bound"] = "smallest";
+  EXPECT_EQ(error_of(c).key_path(), "timestep.stiffness_bound");
+}
+
 // Issue 20: 100000 threads passed `check` and crashed the server in libgomp;
 // 4294967297 silently became 1.
 TEST(DemConfig, ThreadCountIsBoundedAndNeverWraps) {

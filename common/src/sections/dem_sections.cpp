@@ -446,7 +446,15 @@ const SectionDeclaration& timestep() {
                      P::number("max_overlap_fraction", "-",
                                "the run stops as unstable when a contact overlap exceeds this fraction of the smaller radius (a wall contact: of the particle's)")
                          .within(kOpenFraction)
-                         .fallback(kDefaultMaxOverlapFraction)},
+                         .fallback(kDefaultMaxOverlapFraction),
+                     // dem_server/include/dfc/dem/timestep.hpp: a sphere's contacts are bounded
+                     // by the law's stiffness at its own radius whatever its partners' sizes;
+                     // the body's largest radius (the bound before 2026-12) is
+                     // sqrt(r_max / r_min) more cautious on a graded body.
+                     P::string("stiffness_bound", "which radius each sphere's contact stiffness bound is taken at in the critical step: its own "
+                                                  "(per_particle), or the body's largest (largest_radius: sqrt(r_max/r_min) smaller steps on a graded body)")
+                         .one_of({"per_particle", "largest_radius"})
+                         .fallback("per_particle")},
   };
   return s;
 }

@@ -274,6 +274,7 @@ TimestepConfig read_timestep(ConfigReader& root) {
   else cfg->accept("dt_s");
   t.fraction_of_critical = cfg->number("fraction_of_critical");
   t.max_overlap_fraction = cfg->number("max_overlap_fraction");
+  t.step_bound = cfg->string("stiffness_bound") == "largest_radius" ? StepBound::largest_radius : StepBound::per_particle;
   cfg->finish();
   return t;
 }

@@ -28,12 +28,13 @@ bool inside_pile(const GeneratedSphere& s, const CylinderGeometry& g) {
 /// s, critical step of these particles with the particle, wall_contact
 /// (the coupling wall arrives later but counts now) and wall laws.
 double critical_step(const ParticleStore& particles, const DemConfig& c, const std::vector<Wall>& walls) {
-  double r_max = 0.0;
-  for (const double r : particles.radius) r_max = std::max(r_max, r);
-  std::vector<StiffnessBound> laws{c.contact.stiffness_bound(r_max), c.wall_contact.stiffness_bound(r_max)};
-  for (const auto& m : c.material_laws) laws.push_back(m.stiffness_bound(r_max));
-  for (const auto& w : walls) laws.push_back(w.law.stiffness_bound(r_max));
-  return critical_timestep(particles, laws);
+  const auto bound = [&](double radius) {
+    StiffnessBound k = stiffest(c.contact.stiffness_bound(radius), c.wall_contact.stiffness_bound(radius));
+    for (const auto& m : c.material_laws) k = stiffest(k, m.stiffness_bound(radius));
+    for (const auto& w : walls) k = stiffest(k, w.law.stiffness_bound(radius));
+    return k;
+  };
+  return critical_timestep(particles, bound, c.timestep.step_bound);
 }
 
 /// Steps 3-5 of build_model after the particles: the cell, the time step
@@ -126,7 +127,8 @@ DemModel build_model(const DemConfig& c) {
                                                                      .threads = c.threads,
                                                                      .install_bonds_at_start = !prepared,
                                                                      .max_overlap_fraction = c.timestep.max_overlap_fraction,
-                                                                     .material_laws = c.material_laws});
+                                                                     .material_laws = c.material_laws,
+                                                                     .step_bound = c.timestep.step_bound});
   Simulation& sim = *model.simulation;
 
   // 2. Rigid walls and the pile.

@@ -43,10 +43,12 @@ void Simulation::add_sphere(std::int64_t id, Vec3 centre, double radius, double 
                     std::to_string(materials_.count()) + " materials");
   if (!ids_.insert(id).second) throw UserError("particle id " + std::to_string(id) + " is used twice; ids must be unique");
   particles_.add_sphere(id, centre, radius, density, material);
+  critical_step_.reset();
   stale_ = true;
 }
 
 ParticleStore& Simulation::particles_for_edit() {
+  critical_step_.reset();  // the caller may change radii or masses
   stale_ = true;
   return particles_;
 }
@@ -54,6 +56,7 @@ ParticleStore& Simulation::particles_for_edit() {
 std::size_t Simulation::add_wall(Wall wall) {
   walls_.push_back(std::move(wall));
   wall_contacts_.emplace_back();
+  critical_step_.reset();
   stale_ = true;
   return walls_.size() - 1;
 }
@@ -61,6 +64,7 @@ std::size_t Simulation::add_wall(Wall wall) {
 void Simulation::replace_wall(std::size_t index, Wall wall) {
   walls_.at(index) = std::move(wall);
   wall_contacts_.at(index) = WallContacts{};  // facet indices changed meaning: no history to carry
+  critical_step_.reset();
   stale_ = true;
 }
 
@@ -79,10 +83,15 @@ void Simulation::set_wall_velocity(std::size_t wall, const Vec3& velocity) {
 }
 
 double Simulation::critical_timestep() const {
-  const double r_max = largest_radius(particles_);
-  std::vector<StiffnessBound> laws{materials_.stiffness_bound(r_max)};
-  for (const auto& w : walls_) laws.push_back(w.law.stiffness_bound(r_max));
-  return dfc::dem::critical_timestep(particles_, laws);
+  if (!critical_step_) {
+    const auto bound = [this](double radius) {
+      StiffnessBound k = materials_.stiffness_bound(radius);
+      for (const auto& w : walls_) k = stiffest(k, w.law.stiffness_bound(radius));
+      return k;
+    };
+    critical_step_ = dfc::dem::critical_timestep(particles_, bound, settings_.step_bound);
+  }
+  return *critical_step_;
 }
 
 void Simulation::install_bonds_now() noexcept {
@@ -121,6 +130,7 @@ std::size_t Simulation::remove_particles_before_start(const std::function<bool(s
   after.seal();
   seeded_pairs_ = std::move(after);
   particles_.retain(kept);
+  critical_step_.reset();
   for (const std::int64_t id : removed) ids_.erase(id);
   pairs_ = PairContacts{};
   for (auto& w : wall_contacts_) w = WallContacts{};

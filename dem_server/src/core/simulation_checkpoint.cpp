@@ -204,6 +204,7 @@ struct SimulationLayout {
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
   std::vector<Wall> walls_;
+  std::optional<double> critical_step_;  // a cache of critical_timestep(): recomputed, not saved
   PairContacts pairs_;
   std::vector<WallContacts> wall_contacts_;
   std::vector<std::size_t> wall_offsets_;

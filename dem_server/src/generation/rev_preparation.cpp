@@ -16,10 +16,8 @@ namespace {
 double grown_critical_step(const Simulation& sim, const std::vector<double>& final_radius) {
   ParticleStore grown = sim.particles();
   for (std::size_t i = 0; i < grown.size(); ++i) grown.set_radius(i, final_radius[std::size_t(grown.id[i])]);
-  double r_max = 0.0;
-  for (const double r : final_radius) r_max = std::max(r_max, r);
-  const std::vector<StiffnessBound> laws{sim.settings().particle_law.stiffness_bound(r_max)};
-  return critical_timestep(grown, laws);
+  const ContactLawSetting& law = sim.settings().particle_law;
+  return critical_timestep(grown, [&](double radius) { return law.stiffness_bound(radius); }, sim.settings().step_bound);
 }
 
 /// Stops every particle. Used before the bonds are installed: an intact bond's

@@ -20,6 +20,7 @@
 #include "dfc/dem/pcrm_generation.hpp"
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/radius_expansion.hpp"
+#include "dfc/dem/timestep.hpp"
 #include "dfc/dem/triaxial_walls.hpp"
 #include "dfc/dem/ucs_platens.hpp"
 #include "dfc/dem/wall.hpp"
@@ -91,6 +92,7 @@ struct TimestepConfig {
   double fraction_of_critical = sections::kDefaultFractionOfCritical;
   double max_overlap_fraction = sections::kDefaultMaxOverlapFraction;  ///< the instability guard (SimulationSettings)
   std::optional<double> dt;  ///< s, fixed step instead of a fraction
+  StepBound step_bound = StepBound::per_particle;  ///< timestep.hpp
 };
 
 struct DemConfig {

@@ -43,6 +43,7 @@
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/seam_balance.hpp"
+#include "dfc/dem/timestep.hpp"
 #include "dfc/dem/wall.hpp"
 
 namespace dfc {
@@ -66,6 +67,9 @@ struct SimulationSettings {
   /// Laws of particle materials 1, 2, ... (graded upscaling: a zone each;
   /// particle_materials.hpp): the same law as particle_law, other parameters.
   std::vector<ContactLawSetting> material_laws{};
+  /// Which radius each sphere's stiffness bound is taken at (timestep.hpp;
+  /// dem.timestep.stiffness_bound).
+  StepBound step_bound = StepBound::per_particle;
 };
 
 class Simulation {
@@ -90,7 +94,8 @@ class Simulation {
   void set_wall_velocity(std::size_t wall, const Vec3& velocity);
 
   // Running -------------------------------------------------------------------
-  /// s, see timestep.hpp.
+  /// s, see timestep.hpp; kept until particles, radii or walls change (the
+  /// servers check every advance against it: an O(N) pass over the laws).
   [[nodiscard]] double critical_timestep() const;
   /// One step of dt, without checking dt against the critical step.
   /// record = gathered_only when nothing reads contact_outputs() before the
@@ -212,6 +217,7 @@ class Simulation {
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
   std::vector<Wall> walls_;
+  mutable std::optional<double> critical_step_;  ///< critical_timestep() of the present particles and walls
 
   PairContacts pairs_;
   std::vector<WallContacts> wall_contacts_;
