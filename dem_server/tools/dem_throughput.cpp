@@ -55,6 +55,7 @@
 #include <string>
 #include <vector>
 
+#include "dfc/common/command_line.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/model_builder.hpp"
@@ -109,23 +110,24 @@ Options parse(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw std::runtime_error(std::string("option ") + argv[i] + " needs a value");
     const std::string a = argv[i], v = argv[i + 1];
-    if (a == "--side") o.side = std::stoi(v);
-    else if (a == "--layers") o.layers = std::stoi(v);
-    else if (a == "--steps") o.steps = std::stoi(v);
-    else if (a == "--max-settle") o.max_settle = std::stoi(v);
+    if (a == "--side") o.side = int(dfc::parse_count_option(a, v, 2, 1000));
+    else if (a == "--layers") o.layers = int(dfc::parse_count_option(a, v, 1, 1000));
+    else if (a == "--steps") o.steps = int(dfc::parse_count_option(a, v, 1, 1000000000));
+    else if (a == "--max-settle") o.max_settle = int(dfc::parse_count_option(a, v, 0, 1000000000));
     else if (a == "--data") o.data = v;
-    else if (a == "--warmup") o.warmup = std::stoi(v);
+    else if (a == "--warmup") o.warmup = int(dfc::parse_count_option(a, v, 0, 1000000000));
     else if (a == "--law") {
       if (v != "linear" && v != "linear_pbond" && v != "damage_bond")
         throw std::runtime_error("--law must be linear, linear_pbond or damage_bond, not " + v);
       o.law = v;
     }
-    else if (a == "--local-damping") o.local_damping = std::stod(v);
+    else if (a == "--local-damping") o.local_damping = dfc::parse_number_option(a, v, dfc::Bounds{0.0, 1.0});
     else if (a == "--section") o.section = v;
     else if (a == "--threads") {
       o.threads.clear();
       std::istringstream list(v);
-      for (int t = 0; list >> t;) o.threads.push_back(t);
+      for (std::string t; list >> t;) o.threads.push_back(int(dfc::parse_count_option(a, t, 1, 4096)));
+      if (o.threads.empty()) throw std::runtime_error("--threads takes one or more thread counts, as \"1 2\"");
     } else throw std::runtime_error("unknown option " + a);
   }
   if (o.digest && o.data.empty() && o.section.empty()) throw std::runtime_error("--digest needs --data or --section (it hashes their final state)");

@@ -48,6 +48,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dfc/common/command_line.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/dem/conventional_generation.hpp"
 #include "dfc/dem/measurements.hpp"
@@ -103,14 +104,14 @@ Options parse(int argc, char** argv) {
     if (i + 1 >= argc) throw std::runtime_error("option " + a + " needs a value");
     const std::string v = argv[++i];
     if (a == "--scenario") o.scenario = v;
-    else if (a == "--radius-m") o.radius = std::stod(v);
-    else if (a == "--height-m") o.height = std::stod(v);
-    else if (a == "--sides") o.sides = std::stoi(v);
-    else if (a == "--ratio") o.ratio = std::stod(v);
-    else if (a == "--max-steps") o.max_steps = std::stoll(v);
-    else if (a == "--unbonded-max-steps") o.unbonded_max_steps = std::stoll(v);
-    else if (a == "--threads") o.threads = std::stoi(v);
-    else if (a == "--porosity") o.porosity = std::stod(v);
+    else if (a == "--radius-m") o.radius = dfc::parse_number_option(a, v, dfc::Bounds{0.0, 100.0});
+    else if (a == "--height-m") o.height = dfc::parse_number_option(a, v, dfc::Bounds{0.0, 100.0});
+    else if (a == "--sides") o.sides = int(dfc::parse_count_option(a, v, 8, 100000));
+    else if (a == "--ratio") o.ratio = dfc::parse_number_option(a, v, dfc::kPositive);
+    else if (a == "--max-steps") o.max_steps = std::int64_t(dfc::parse_count_option(a, v, 1, std::uint64_t(1) << 62));
+    else if (a == "--unbonded-max-steps") o.unbonded_max_steps = std::int64_t(dfc::parse_count_option(a, v, 0, std::uint64_t(1) << 62));
+    else if (a == "--threads") o.threads = int(dfc::parse_count_option(a, v, 0, 4096));
+    else if (a == "--porosity") o.porosity = dfc::parse_number_option(a, v, dfc::Bounds{0.0, 1.0});
     else throw std::runtime_error("unknown option " + a);
   }
   if (o.scenario.empty()) throw std::runtime_error("--scenario FILE is required");
