@@ -42,7 +42,7 @@ import numpy as np  # noqa: E402
 
 try:
     import h5py  # noqa: E402
-    from dfc_results import ResultsError, open_results  # noqa: E402
+    from dfc_results import ResultsError, open_results, open_to_add_groups  # noqa: E402
 except ImportError:  # pragma: no cover - reported to the user
     sys.exit("centrifuge_foundation.py needs python3-h5py and python3-numpy (Debian: apt-get install python3-h5py python3-numpy)")
 
@@ -330,19 +330,34 @@ def stress_grid(run, nr=6, nz=8, r_edges=None, z_edges=None, group_name="foundat
             out_zz.append(grid_zz / volume)
             times.append(float(snap.attrs["time"]))
     displacement = [displacement_at(run, t) for t in times]
-    with h5py.File(run.path, "r+") as f:
-        if group_name in f:
-            del f[group_name]
-        g = f.create_group(group_name)
-        g.attrs["description"] = ("sigma_rr, sigma_zz [snapshot, z, r] (Pa, compression positive): sum of particle volume x "
-                                  "Love-Weber particle stress over each ring cell's volume (tools/centrifuge_foundation.py)")
-        g["r_edges_m"] = r_edges
-        g["z_edges_m"] = z_edges
-        g["time_s"] = np.array(times)
-        g["pile_displacement_m"] = np.array(displacement)
-        g["sigma_rr_pa"] = np.array(out_rr)
-        g["sigma_zz_pa"] = np.array(out_zz)
+    add_group(run.path, group_name, lambda g: fill_stress_grid(g, r_edges, z_edges, times, displacement, out_rr, out_zz))
     return np.array(out_rr), np.array(out_zz)
+
+
+def add_group(path, name, fill):
+    """Group `name` of the results file at `path`, replaced and filled by fill(group),
+    once the run that writes the file has ended; until then nothing is written into it
+    (a second writer would corrupt it) and a line on stderr says so."""
+    f = open_to_add_groups(path)
+    if f is None:
+        print(f"{os.path.basename(sys.argv[0])}: the run writing {path} has not ended: /{name}/ not written into it "
+              "(figures and summary.json are)", file=sys.stderr)
+        return
+    with f:
+        if name in f:
+            del f[name]
+        fill(f.create_group(name))
+
+
+def fill_stress_grid(g, r_edges, z_edges, times, displacement, out_rr, out_zz):
+    g.attrs["description"] = ("sigma_rr, sigma_zz [snapshot, z, r] (Pa, compression positive): sum of particle volume x "
+                              "Love-Weber particle stress over each ring cell's volume (tools/centrifuge_foundation.py)")
+    g["r_edges_m"] = r_edges
+    g["z_edges_m"] = z_edges
+    g["time_s"] = np.array(times)
+    g["pile_displacement_m"] = np.array(displacement)
+    g["sigma_rr_pa"] = np.array(out_rr)
+    g["sigma_zz_pa"] = np.array(out_zz)
 
 
 def force_balance(run):

@@ -23,7 +23,8 @@ RESULTS_DIR):
 and into each results file the groups /open_pile_grid/ (sigma_rr, sigma_zz of
 the DEM on the r-z grid at every snapshot, tools/centrifuge_foundation.py's
 stress_grid) and /open_pile/ (h, plug length, PLR, IFR on a grid of h; the
-FDM's sigma_rr and the bond damage on the section at the last snapshot).
+FDM's sigma_rr and the bond damage on the section at the last snapshot), once
+the run that writes the file has ended (before, a second writer would corrupt it).
 
     tools/open_pile.py RESULTS_DIR [--out DIR]
 
@@ -44,7 +45,7 @@ import numpy as np  # noqa: E402
 warnings.filterwarnings("ignore", message="Mean of empty slice")  # band() past the end of a shorter run
 warnings.filterwarnings("ignore", message="All-NaN slice encountered")
 
-from centrifuge_foundation import Run, band, find_study_runs, force_balance, h5py, open_results, spread, stress_grid, study_runs  # noqa: E402
+from centrifuge_foundation import Run, add_group, band, find_study_runs, force_balance, h5py, open_results, spread, stress_grid, study_runs  # noqa: E402
 
 DEPTHS_MM = (5.0, 10.0, 20.0)  # the forces the docs page reports (Ciantia et al. 2024 Fig. 2a runs to 20 mm)
 SMOOTHING = 0.5e-3  # m, the running mean of the force curves in Fig. 2a; the forces at 5, 10, 20 mm are means over the same width
@@ -299,23 +300,19 @@ def fdm_at_wall(fdm, radius, z_range):
 
 def analyse(run, out, figures):
     r_edges, z_edges = grid_edges(run)
-    stress_grid(run, r_edges=r_edges, z_edges=z_edges, group_name="open_pile_grid")
-    with h5py.File(run.path, "r") as f:
-        sigma_rr = f["open_pile_grid/sigma_rr_pa"][-1]
+    sigma_rr = stress_grid(run, r_edges=r_edges, z_edges=z_edges, group_name="open_pile_grid")[0][-1]
     fdm = fdm_radial_stress(run.path)
     traction = wall_traction(run.path, fdm[0][0])
     damage, bonds = bond_damage_grid(run.path, r_edges, z_edges)
     grid, length, plr, ifr = run.plug_ratios()
-    with h5py.File(run.path, "r+") as f:
-        if "open_pile" in f:
-            del f["open_pile"]
-        g = f.create_group("open_pile")
+    def fill(g):
         g.attrs["description"] = ("plug: soil column length in the pile on a grid of pile displacement h, PLR = L/h, IFR = dL/dh over "
                                   f"{IFR_STEP} m; fdm_sigma_rr_pa [z, r] (compression positive) and bond_damage [z, r] at the last "
                                   "snapshot (tools/open_pile.py)")
         g["h_m"], g["plug_length_m"], g["plug_length_ratio"], g["incremental_filling_ratio"] = grid, length, plr, ifr
         g["fdm_r_edges_m"], g["fdm_z_edges_m"], g["fdm_sigma_rr_pa"] = fdm
         g["r_edges_m"], g["z_edges_m"], g["bond_damage"], g["bond_count"] = r_edges, z_edges, damage, bonds
+    add_group(run.path, "open_pile", fill)
     tip = run.surface_z - float(np.max(run.h))
     d, ro, ri = run.diameter, 0.5 * run.diameter, run.inner_radius
     near_tip = (tip - 0.25 * d, tip + 0.25 * d)

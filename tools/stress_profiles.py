@@ -16,6 +16,8 @@ the group /profiles/ with, against depth below the surface:
                                 stress (particle_stress_pa) as the DEM sums its own slices
 
 all from the last snapshot, and a PNG of them (as Fig. 3 of Zheng et al. 2023, docs/references.md).
+While the run that writes the file has not ended, only the PNG is written (a
+second writer would corrupt the file the coupler still holds open).
 The group's attributes sigma_v_error_max and sigma_h_error_max are the largest
 |sigma / theory - 1| over the interior slices of both profiles (the top and
 bottom REV-cell slice left out; of the thin slices, those nearer than two
@@ -30,12 +32,16 @@ do), 2 on bad input.
 """
 import argparse
 import json
+import os
 import sys
 
-import numpy as np
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "python"))
+
+import numpy as np  # noqa: E402
 
 try:
-    import h5py
+    import h5py  # noqa: E402
+    from dfc_results import ResultsError, open_to_add_groups  # noqa: E402
 except ImportError:  # pragma: no cover - reported to the user
     sys.exit("stress_profiles.py needs python3-h5py (Debian: apt-get install python3-h5py)")
 
@@ -102,6 +108,26 @@ def worst_error(sigma, theory, interior):
     return float(np.nanmax(e)) if e.size else float("nan")
 
 
+def write_group(f, out, thin, inner, snapshot_time, errors, slices_per_cell):
+    """/profiles/ (and /profiles/thin/) into the open results file f."""
+    if "profiles" in f:
+        del f["profiles"]
+    group = f.create_group("profiles")
+    group.attrs["snapshot_time_s"] = snapshot_time
+    for name, values in out.items():
+        ds = group.create_dataset(name, data=np.asarray(values, dtype=np.float64))
+        ds.attrs["unit"] = "m" if name == "depth_m" else "-" if name == "k0" else "Pa"
+    if thin is not None:
+        sub = group.create_group("thin")
+        sub.attrs["slices_per_cell"] = slices_per_cell
+        sub.create_dataset("interior", data=np.asarray(inner, dtype=np.int64))
+        for name, values in thin.items():
+            ds = sub.create_dataset(name, data=np.asarray(values, dtype=np.float64))
+            ds.attrs["unit"] = "m" if name == "depth_m" else "-" if name == "k0" else "Pa"
+    for name, e in errors.items():
+        group.attrs[name + "_error_max"] = e
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("results", help="results.h5 of a run with a generated (pcrm) DEM body")
@@ -111,7 +137,7 @@ def main(argv=None):
     if args.slices_per_cell < 1:
         parser.error("--slices-per-cell must be at least 1")
     try:
-        f = h5py.File(args.results, "r+")
+        f = h5py.File(args.results, "r")
     except OSError as e:
         print(f"stress_profiles.py: cannot open {args.results}: {e}", file=sys.stderr)
         return 2
@@ -122,6 +148,7 @@ def main(argv=None):
         if generation is None or dem is None or "profile_depth_m" not in dem:
             print(f"stress_profiles.py: {args.results} has no generated DEM body; nothing to do", file=sys.stderr)
             return 3
+        snapshot_time = dem.attrs.get("time", np.nan)
         depth = dem["profile_depth_m"][()]
         out = {
             "depth_m": depth,
@@ -143,38 +170,35 @@ def main(argv=None):
         continuum = last_snapshot(f, "continuum")
         if continuum is not None and "zone_stress" in continuum:
             out["sigma_v_fdm_pa"], out["sigma_h_fdm_pa"] = fdm_profile(continuum, depth, generation["surface_z_m"])
-        if "profiles" in f:
-            del f["profiles"]
-        group = f.create_group("profiles")
-        group.attrs["snapshot_time_s"] = dem.attrs.get("time", np.nan)
-        for name, values in out.items():
-            ds = group.create_dataset(name, data=np.asarray(values, dtype=np.float64))
-            ds.attrs["unit"] = "m" if name == "depth_m" else "-" if name == "k0" else "Pa"
-        # Interior: without the top and bottom REV-cell slice (the free
-        # surface and the floor's boundary layer), the criterion of the
-        # generation tests.
-        interior = np.arange(len(depth))[1:-1]
-        errors = {"sigma_v": worst_error(out["sigma_v_pa"], out["sigma_v_theory_pa"], interior),
-                  "sigma_h": worst_error(out["sigma_h_pa"], out["sigma_h_theory_pa"], interior)}
-        if thin is not None:
-            sub = group.create_group("thin")
-            sub.attrs["slices_per_cell"] = args.slices_per_cell
-            sub.create_dataset("interior", data=np.asarray(inner, dtype=np.int64))
-            for name, values in thin.items():
-                ds = sub.create_dataset(name, data=np.asarray(values, dtype=np.float64))
-                ds.attrs["unit"] = "m" if name == "depth_m" else "-" if name == "k0" else "Pa"
-            theory = gamma * thin["depth_m"] + q
-            errors["sigma_v"] = float(np.nanmax([errors["sigma_v"], worst_error(thin["sigma_v_pa"], theory, inner)]))
-            errors["sigma_h"] = float(np.nanmax([errors["sigma_h"], worst_error(thin["sigma_h_pa"], k0 * theory, inner)]))
-            out["thin"] = thin
-        for name, e in errors.items():
-            group.attrs[name + "_error_max"] = e
-            if e > 0.05:
-                print(f"stress_profiles.py: {args.results}: {name} is off its theory by up to {100 * e:.1f} % at an interior slice "
-                      f"(more than 5 %): the body is not at the geostatic K0 state asked for", file=sys.stderr)
+    # Interior: without the top and bottom REV-cell slice (the free surface and
+    # the floor's boundary layer), the criterion of the generation tests.
+    interior = np.arange(len(depth))[1:-1]
+    errors = {"sigma_v": worst_error(out["sigma_v_pa"], out["sigma_v_theory_pa"], interior),
+              "sigma_h": worst_error(out["sigma_h_pa"], out["sigma_h_theory_pa"], interior)}
+    if thin is not None:
+        theory = gamma * thin["depth_m"] + q
+        errors["sigma_v"] = float(np.nanmax([errors["sigma_v"], worst_error(thin["sigma_v_pa"], theory, inner)]))
+        errors["sigma_h"] = float(np.nanmax([errors["sigma_h"], worst_error(thin["sigma_h_pa"], k0 * theory, inner)]))
+    try:
+        target = open_to_add_groups(args.results)
+    except ResultsError as e:
+        print(f"stress_profiles.py: {e}", file=sys.stderr)
+        return 2
+    if target is None:
+        print(f"stress_profiles.py: the run writing {args.results} has not ended: /profiles/ not written into it "
+              f"(the figure is; run again when the run has ended)", file=sys.stderr)
+    else:
+        with target:
+            write_group(target, out, thin, inner if thin is not None else None, snapshot_time, errors, args.slices_per_cell)
+    if thin is not None:
+        out["thin"] = thin
+    for name, e in errors.items():
+        if e > 0.05:
+            print(f"stress_profiles.py: {args.results}: {name} is off its theory by up to {100 * e:.1f} % at an interior slice "
+                  f"(more than 5 %): the body is not at the geostatic K0 state asked for", file=sys.stderr)
     png = args.png or str(args.results).rsplit("/", 1)[0] + "/profiles.png" if "/" in str(args.results) else "profiles.png"
     plot(out, png)
-    print(f"stress_profiles.py: wrote /profiles/ in {args.results} and {png}")
+    print(f"stress_profiles.py: wrote {'/profiles/ in ' + str(args.results) + ' and ' if target is not None else ''}{png}")
     return 0
 
 

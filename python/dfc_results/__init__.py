@@ -39,7 +39,7 @@ os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
 import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 
-__all__ = ["FORMAT", "Results", "Series", "Snapshot", "open_results", "open_variants", "ResultsError"]
+__all__ = ["FORMAT", "Results", "Series", "Snapshot", "open_results", "open_variants", "open_to_add_groups", "ResultsError"]
 
 FORMAT = "dfc-results-1"
 RESULTS_FILE = "results.h5"
@@ -122,6 +122,12 @@ class Results:
     def failure(self):
         """The failure message of a run that stopped on an error, else None."""
         return _json_attribute(self._file.attrs, "failure")
+
+    @property
+    def ended(self):
+        """Whether the run that writes this file has ended (summary, failure or interruption
+        written), so that the coupler no longer holds it open."""
+        return _has_ended(self._file)
 
     # Time series ------------------------------------------------------------
 
@@ -212,6 +218,31 @@ class Results:
 
     def __repr__(self):
         return f"Results('{self.path}')"
+
+
+_END_ATTRIBUTES = ("summary", "failure", "interrupted")  # the coupler's last word before it closes the file
+
+
+def _has_ended(handle):
+    return any(name in handle.attrs for name in _END_ATTRIBUTES)
+
+
+def open_to_add_groups(path):
+    """results.h5 opened read-write (an h5py.File) for a tool to add the groups it derives
+    (/profiles/, /open_pile/, ...), or None while the run that writes it has not ended.
+
+    The coupler keeps the file open for the whole run without the HDF5 file lock (so that
+    readers can look in); a second writer then would corrupt it, losing the run's records.
+    A run killed before its summary (no end attribute ever) gets no groups: rerun or
+    resume it to the end first."""
+    path = os.fspath(path)
+    try:
+        with h5py.File(path, "r") as handle:
+            if not _has_ended(handle):
+                return None
+        return h5py.File(path, "r+")
+    except OSError as error:
+        raise ResultsError(f"cannot open '{path}' to add groups ({error})") from error
 
 
 def open_results(path):

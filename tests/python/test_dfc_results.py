@@ -156,6 +156,36 @@ class ResultsFileTest(unittest.TestCase):
         with dfc_results.open_results(path) as run:
             self.assertIsNone(run.summary)
 
+    def test_groups_are_added_only_once_the_run_has_ended(self):
+        # The coupler holds the file open without the HDF5 lock while the run
+        # goes on; a tool writing into it then corrupted a run's records
+        # ("bad heap free list"). Until an end attribute is there the file
+        # must not even be opened for writing: its bytes stay as they were.
+        going = os.path.join(self.tmp.name, "going", "results.h5")
+        write_results(going, summary=False)
+        with open(going, "rb") as handle:
+            before = handle.read()
+        self.assertIsNone(dfc_results.open_to_add_groups(going))
+        with open(going, "rb") as handle:
+            self.assertEqual(handle.read(), before)
+        with dfc_results.open_results(going) as run:
+            self.assertFalse(run.ended)
+        for attribute in ("summary", "failure", "interrupted"):  # each is the coupler's last write before it closes
+            path = os.path.join(self.tmp.name, attribute, "results.h5")
+            write_results(path, summary=False)
+            with h5py.File(path, "r+") as f:
+                f.attrs.create(attribute, json.dumps("end"), dtype=STRING)
+            with dfc_results.open_results(path) as run:
+                self.assertTrue(run.ended, attribute)
+            target = dfc_results.open_to_add_groups(path)
+            self.assertIsNotNone(target, attribute)
+            with target:
+                target.create_group("derived")["x"] = np.arange(3.0)
+            with h5py.File(path, "r") as f:
+                self.assertEqual(list(f["derived/x"][()]), [0.0, 1.0, 2.0])
+        with self.assertRaises(dfc_results.ResultsError):
+            dfc_results.open_to_add_groups(os.path.join(self.tmp.name, "absent.h5"))
+
     def test_not_a_results_file(self):
         with self.assertRaises(dfc_results.ResultsError):
             dfc_results.open_results(os.path.join(self.tmp.name, "absent.h5"))

@@ -139,6 +139,29 @@ class GenerationAtAnyGLevel(unittest.TestCase):
                 with self.subTest(case=case, stress=key):
                     np.testing.assert_allclose(c[key][1:-1], c[theory][1:-1], rtol=0.05)
 
+    def test_a_run_not_ended_gets_its_figure_but_no_group(self):
+        # stress_profiles.py on a file whose run still goes on (no summary:
+        # the coupler holds it open unlocked) must leave it alone: a second
+        # writer corrupted such a file. A finished run's copy, its end undone.
+        case = next(iter(self.profiles), None)
+        self.assertIsNotNone(case, "no run finished")
+        folder = os.path.join(OUT, "not_ended")
+        os.makedirs(folder, exist_ok=True)
+        results = os.path.join(folder, "results.h5")
+        shutil.copyfile(os.path.join(self.runs[case][0], "results.h5"), results)
+        with h5py.File(results, "r+") as f:
+            del f["profiles"]
+            del f.attrs["summary"]
+        png = os.path.join(folder, "profiles.png")
+        err = io.StringIO()
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+            status = stress_profiles.main([results, "--png", png])
+        self.assertEqual(status, 0)
+        self.assertTrue(os.path.isfile(png))
+        self.assertIn("has not ended", err.getvalue())
+        with h5py.File(results, "r") as f:
+            self.assertNotIn("profiles", f)
+
 
 if __name__ == "__main__":
     unittest.main(argv=sys.argv[:1])
