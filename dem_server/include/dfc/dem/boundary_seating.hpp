@@ -8,9 +8,12 @@
 // wall, a micrometre of elastic strain away, never reaches it). Seating moves
 // each outermost sphere towards the wall, along the line from its centre to
 // the nearest point of the wall, until it overlaps the wall by
-//     delta = sigma_n (A / N) / k_n   (k_n the wall law's normal stiffness
-//                                      for radius r; A / N the body's face area
-//                                      shared among the N spheres seated on it),
+//     delta = sigma_n (A / N) / k_n   (k_n the wall law's stiffness bound for
+//                                      radius r: for a bonded law the contact's
+//                                      and the bond's, about twice the unbonded
+//                                      wall contact's, docs/dem_generation.md §9;
+//                                      A / N the body's face area shared among
+//                                      the N spheres seated on it),
 // sigma_n = sigma_v where the wall faces up or down (the floor), sigma_h =
 // K0 sigma_v where it stands (the sides; stress_profile.hpp), so the seated
 // spheres carry the face's whole force from the start: a body that first had
