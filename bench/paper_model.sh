@@ -9,7 +9,8 @@
 # Prints particle-steps/s, the ratio proxy/real per particle-step, the
 # 2-thread speed-up, the Amdahl serial fraction it implies, pairs and bonds per
 # particle, memory per particle, whether the thread counts gave the same bits,
-# and the paper model's projected run on this machine (docs/open_pile.md §5).
+# the paper model's projected run on this machine (docs/open_pile.md §5), and
+# the time of one rebuild of its neighbour lists (dem_throughput --rebuild-every).
 #
 #   bench/paper_model.sh [BUILD_DIR]           (default build; builds dem_throughput and coupler)
 # Environment: MODELS ("medium paper"), THREADS ("1 2"), PAPER_STEPS (200),
@@ -125,6 +126,17 @@ if [[ " $MODELS " == *" paper "* ]]; then
   for t in $THREADS; do
     printf "%-28s %s\n" "paper run, $t thread(s)" "$(awk -v n="$n" -v s="$RUN_STEPS" -v r="${rate[paper $t]}" 'BEGIN{printf "%.1f days (%g steps x %d spheres at %.3g particle-steps/s)", n * s / r / 86400, s, n, r}')"
   done
+  # 3. The neighbour-list rebuild: serial work a run pays whenever a particle
+  #    has moved half the skin (in the coupled paper model after generation,
+  #    about every 270 steps). 40 steps with a rebuild before every 10th, less
+  #    the same steps at the rate without rebuilds.
+  t=${THREADS##* }
+  log=$WORK/paper_rebuild_t$t.log
+  "$EXE" --section "$WORK/paper.json" --threads "$t" --warmup "$WARMUP" --steps 40 --rebuild-every 10 >"$log" 2>&1 \
+    || { echo "paper_model.sh: the rebuild timing failed (log $log)" >&2; exit 1; }
+  secs=$(grep "^threads " "$log" | field '.*particle-steps/s \(([0-9.eE+-]+) s for.*')
+  printf "%-28s %s\n" "paper rebuild, $t thread(s)" "$(awk -v s="$secs" -v n="$n" -v r="${rate[paper $t]}" 'BEGIN{printf "%.2f s per rebuild of the lists (4 rebuilds in %.1f s of 40 steps, less 40 steps at %.3g particle-steps/s)", (s - 40 * n / r) / 4, s, r}')"
+  grep "^threads " "$log" | sed "s/^/paper rebuild-every-10 /" >>"$report"
 fi
 printf "\nper run (pairs and bonds per particle, memory):\n"
 cat "$report"

@@ -3,7 +3,7 @@
 //   dem_throughput [--side N] [--layers N] [--threads "1 2"] [--steps N] [--max-settle N]
 //   dem_throughput --data FILE [--threads "1 2"] [--warmup 1000] [--steps 2000] [--law linear|linear_pbond|damage_bond]
 //                  [--local-damping A]
-//   dem_throughput --section FILE [--threads "1 2"] [--warmup N] [--steps N] [--digest]
+//   dem_throughput --section FILE [--threads "1 2"] [--warmup N] [--steps N] [--digest] [--rebuild-every N]
 //
 // --section: the real workload. FILE is a DEM section as dem_server receives
 // it (gravity_m_s2 included; bench/paper_model.sh writes one from a scenario):
@@ -12,6 +12,9 @@
 // --steps timed. Prints particle-steps/s, pair candidates and bonds per
 // particle at the first and last timed step, and the resident memory per
 // particle; --digest hashes the final state (the same at every thread count).
+// --rebuild-every N rebuilds the neighbour lists before every N-th timed step
+// (as a run whose particles move by half the skin every N steps): the rebuild's
+// cost is the difference to the rate without it.
 //
 // --law linear_pbond: the same packing with every pair closer than 10 um
 // bonded by a linear parallel bond as stiff as the contact and too strong to
@@ -76,6 +79,7 @@ struct Options {
   double local_damping = 0.0;  ///< --data only: local damping coefficient
   std::string section;         ///< DEM section file: the real workload instead of a packing
   bool digest = false;         ///< --data, --section: print a hash of the final state's bits
+  int rebuild_every = 0;       ///< --section: rebuild the lists before every N-th timed step (0: only when due)
 };
 
 Options parse(int argc, char** argv) {
@@ -87,12 +91,14 @@ Options parse(int argc, char** argv) {
                    "  dem_throughput [--side N] [--layers N] [--threads \"1 2\"] [--steps N] [--max-settle N]\n"
                    "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000]\n"
                    "                 [--law linear|linear_pbond|damage_bond] [--local-damping A] [--digest]\n"
-                   "  dem_throughput --section FILE [--threads \"1 2\"] [--warmup N] [--steps N] [--digest]\n\n"
+                   "  dem_throughput --section FILE [--threads \"1 2\"] [--warmup N] [--steps N] [--digest]\n"
+                   "                 [--rebuild-every N]\n\n"
                    "Without --data: settles a bed of N x N x layers spheres, then times --steps steps per thread count.\n"
                    "With --data: the peer benchmark on a LAMMPS data file (the PEERS_DIR folder of bench/dem_peers.sh);\n"
                    "damage_bond bonds every pair within 10 um by the damage-bond law, too strong to yield.\n"
                    "With --section: a DEM section as dem_server receives it (bench/paper_model.sh writes one from a\n"
-                   "scenario), built once per thread count; prints the rate, pairs and bonds per particle, memory.\n"
+                   "scenario), built once per thread count; prints the rate, pairs and bonds per particle, memory;\n"
+                   "--rebuild-every N rebuilds the neighbour lists before every N-th timed step (the rebuild's cost).\n"
                    "--digest: also print a hash of the final state's bits (positions, velocities, spins, resultants,\n"
                    "pair history, contact forces), to check that a change to the code leaves results bit-identical.\n";
       std::exit(0);
@@ -123,6 +129,7 @@ Options parse(int argc, char** argv) {
     }
     else if (a == "--local-damping") o.local_damping = dfc::parse_number_option(a, v, dfc::Bounds{0.0, 1.0});
     else if (a == "--section") o.section = v;
+    else if (a == "--rebuild-every") o.rebuild_every = int(dfc::parse_count_option(a, v, 0, 1000000000));
     else if (a == "--threads") {
       o.threads.clear();
       std::istringstream list(v);
@@ -312,7 +319,14 @@ void run_section_benchmark(const Options& o) {
     const std::string first = pairs_and_bonds(sim);
     const std::size_t rebuilds = sim.rebuild_count();
     const auto t0 = std::chrono::steady_clock::now();
-    sim.run(o.steps, model.dt);
+    if (o.rebuild_every > 0) {
+      for (int done = 0; done < o.steps; done += o.rebuild_every) {
+        static_cast<void>(sim.particles_for_edit());  // marks the lists stale: the next step rebuilds them
+        sim.run(std::min(o.rebuild_every, o.steps - done), model.dt);
+      }
+    } else {
+      sim.run(o.steps, model.dt);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double n = double(sim.particles().size());
     std::cout << "threads " << sim.threads() << ": " << n * o.steps / seconds << " particle-steps/s (" << seconds << " s for " << o.steps

@@ -100,6 +100,43 @@ std::vector<HistoryArchive::Key> HistoryArchive::keys_with_nonzero(std::size_t c
   return out;
 }
 
+std::vector<std::uint32_t> match_previous_pairs(const PairContacts& before, std::span<const std::uint32_t> new_to_old,
+                                                const std::vector<std::uint32_t>& first, const std::vector<std::uint32_t>& second, int threads) {
+  const std::size_t n = new_to_old.size();
+  std::vector<std::uint32_t> old_to_new(n);
+  for (std::size_t s = 0; s < n; ++s) old_to_new[new_to_old[s]] = std::uint32_t(s);
+  // The previous pairs by their first particle's new slot: (second's new slot, index).
+  std::vector<std::uint32_t> start(n + 1, 0);
+  for (const std::uint32_t i : before.first) ++start[old_to_new[i] + 1];
+  for (std::size_t s = 0; s < n; ++s) start[s + 1] += start[s];
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> partner(before.size());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t k = 0; k < before.size(); ++k)
+    partner[fill[old_to_new[before.first[k]]]++] = {old_to_new[before.second[k]], std::uint32_t(k)};
+  std::vector<std::uint32_t> match(first.size(), no_previous_pair);
+  const auto count = static_cast<std::int64_t>(first.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if(count >= min_parallel_items)
+  for (std::int64_t k = 0; k < count; ++k) {
+    const auto c = std::size_t(k);
+    for (std::uint32_t e = start[first[c]]; e < start[first[c] + 1]; ++e)
+      if (partner[e].first == second[c]) {
+        match[c] = partner[e].second;
+        break;
+      }
+  }
+  return match;
+}
+
+void copy_matched_rows(const PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads) {
+  const auto n = static_cast<std::int64_t>(match.size());
+  const std::size_t stride = pairs.stride;
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::uint32_t m = match[std::size_t(k)];
+    if (m != no_previous_pair) std::copy_n(before.history.data() + std::size_t(m) * stride, stride, pairs.row(std::size_t(k)));
+  }
+}
+
 HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles) {
   HistoryArchive archive(pairs.stride);
   if (pairs.stride == 0) return archive;

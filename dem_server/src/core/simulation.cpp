@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/huge_pages.hpp"
 #include "dfc/dem/integrator.hpp"
 #include "dfc/dem/neighbour_search.hpp"
 #include "dfc/dem/parallel.hpp"
@@ -172,8 +173,15 @@ void Simulation::rebuild() {
   if (cell_)
     for (auto& x : particles_.position) x = cell_->wrap(x);  // history is keyed by ids: wrapping keeps it
 
-  // 1. Keep the history of current contacts under stable keys.
-  const HistoryArchive pair_archive = seeded_pairs_ ? std::move(*seeded_pairs_) : archive_history(pairs_, particles_);
+  // 1. Keep the history of current contacts: by slot where the particles are
+  // those of the last rebuild (the lists then hold their pairs), else under
+  // stable keys (a seeded body, particles added or removed, a resumed state).
+  const bool by_slot = !seeded_pairs_ && !pairs_.history.empty() && particles_.id == ids_at_rebuild_;
+  PairContacts previous;
+  std::optional<HistoryArchive> pair_archive;
+  if (by_slot) previous = std::move(pairs_);
+  else pair_archive = seeded_pairs_ ? std::move(*seeded_pairs_) : archive_history(pairs_, particles_);
+  pairs_ = PairContacts{};
   seeded_pairs_.reset();
   std::vector<HistoryArchive> wall_archives;
   for (const auto& wc : wall_contacts_) wall_archives.push_back(archive_history(wc, particles_));
@@ -194,10 +202,19 @@ void Simulation::rebuild() {
   // Orient every pair by id so that its history is independent of slot order.
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (particles_.id[pairs_.first[k]] > particles_.id[pairs_.second[k]]) std::swap(pairs_.first[k], pairs_.second[k]);
-  if (settings_.particle_law.bonded()) append_persistent_pairs(pair_archive);
   pairs_.stride = settings_.particle_law.history_size();
-  pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
-  restore_history(pairs_, particles_, pair_archive, threads_);
+  if (by_slot) {
+    std::vector<std::uint32_t> match = match_previous_pairs(previous, order, pairs_.first, pairs_.second, threads_);
+    if (settings_.particle_law.bonded()) append_unmatched_bonds(previous, order, match);
+    reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
+    pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
+    copy_matched_rows(previous, match, pairs_, threads_);
+  } else {
+    if (settings_.particle_law.bonded()) append_persistent_pairs(*pair_archive);
+    reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
+    pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
+    restore_history(pairs_, particles_, *pair_archive, threads_);
+  }
   assign_pair_laws();
   if (install) install_bonds(false);
   if (join) install_bonds(true);
@@ -226,8 +243,28 @@ void Simulation::rebuild() {
   for (const auto& w : walls_) reference_vertices_.push_back(w.vertices);
   max_wall_displacement_ = 0.0;
   affine_approach_ = 0.0;
+  ids_at_rebuild_ = particles_.id;
   stale_ = false;
   ++rebuilds_;
+}
+
+void Simulation::append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> new_to_old, std::vector<std::uint32_t>& match) {
+  std::vector<std::uint32_t> old_to_new(new_to_old.size());
+  for (std::size_t s = 0; s < new_to_old.size(); ++s) old_to_new[new_to_old[s]] = std::uint32_t(s);
+  std::vector<char> matched(before.size(), 0);
+  for (const std::uint32_t k : match)
+    if (k != no_previous_pair) matched[k] = 1;
+  std::vector<std::pair<HistoryArchive::Key, std::uint32_t>> unmatched;
+  for (std::size_t k = 0; k < before.size(); ++k)
+    if (!matched[k] && before.history[k * before.stride + bond_state_column] != 0.0)
+      unmatched.push_back({{particles_.id[old_to_new[before.first[k]]], particles_.id[old_to_new[before.second[k]]]}, std::uint32_t(k)});
+  // In key order after the searched pairs, as append_persistent_pairs appends them.
+  std::sort(unmatched.begin(), unmatched.end());
+  for (const auto& [key, k] : unmatched) {
+    pairs_.first.push_back(old_to_new[before.first[k]]);
+    pairs_.second.push_back(old_to_new[before.second[k]]);
+    match.push_back(k);
+  }
 }
 
 void Simulation::append_persistent_pairs(const HistoryArchive& archive) {

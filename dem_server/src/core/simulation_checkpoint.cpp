@@ -203,6 +203,7 @@ struct SimulationLayout {
   double skin_, r_max_;
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
+  std::vector<std::int64_t> ids_at_rebuild_;  // not saved: the first rebuild after a restore carries history by id
   std::vector<Wall> walls_;
   std::optional<double> critical_step_;  // a cache of critical_timestep(): recomputed, not saved
   PairContacts pairs_;
@@ -302,6 +303,7 @@ void Simulation::save_state(StateWriter& out) const { transfer_state(out, *this)
 
 void Simulation::load_state(StateReader& in) {
   transfer_state(in, *this);
+  ids_at_rebuild_.clear();  // the first rebuild carries the restored history by id (HistoryArchive), as any other
   // The pair constants follow from the radii, masses and laws alone: computed
   // again, they are the same bits, and a checkpoint written before a law had
   // constants (its stride 0) resumes with them.

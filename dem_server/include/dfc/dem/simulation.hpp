@@ -189,6 +189,9 @@ class Simulation {
   void rebuild();
   /// Appends the pairs of `archive` with a bond (ever) that the search did not find.
   void append_persistent_pairs(const HistoryArchive& archive);
+  /// The same for a rebuild by slot: the bonded pairs of `before` that no new
+  /// pair matched, appended in id order with their index in `match`.
+  void append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> new_to_old, std::vector<std::uint32_t>& match);
   /// Bonds every pair with a surface gap <= its law's bond gap (first
   /// rebuild); with `across_materials_only`, only unbonded pairs of particles
   /// of different materials whose history is empty.
@@ -216,6 +219,7 @@ class Simulation {
   double r_max_ = 0.0;  ///< m, largest radius at the last rebuild
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
+  std::vector<std::int64_t> ids_at_rebuild_;  ///< particle ids by slot after the last rebuild: pairs_ may carry history by slot
   std::vector<Wall> walls_;
   mutable std::optional<double> critical_step_;  ///< critical_timestep() of the present particles and walls
 
