@@ -20,7 +20,10 @@
 # 20 mm at 0.5 m/s in the built model's time step, plus ramp and
 # equilibrium: docs/open_pile.md §5), KEEP (a folder to keep the sections and logs in),
 # DEM_THROUGHPUT (another build's dem_throughput, to compare two versions on
-# the same sections; its state digests must then equal this build's).
+# the same sections; its state digests must then equal this build's), PROFILE
+# (1 where perf is installed: a profile of each model's timed steps at one
+# thread, which gives the serial fraction of a step and its Amdahl bound on
+# 16 and 64 cores, bench/serial_fraction.py; 0 skips it).
 # Each model and thread count runs in a process of its own, so the memory
 # figure is that model's alone. Not part of the default test run (./vc bench).
 set -euo pipefail
@@ -137,6 +140,24 @@ if [[ " $MODELS " == *" paper "* ]]; then
   secs=$(grep "^threads " "$log" | field '.*particle-steps/s \(([0-9.eE+-]+) s for.*')
   printf "%-28s %s\n" "paper rebuild, $t thread(s)" "$(awk -v s="$secs" -v n="$n" -v r="${rate[paper $t]}" 'BEGIN{printf "%.2f s per rebuild of the lists (4 rebuilds in %.1f s of 40 steps, less 40 steps at %.3g particle-steps/s)", (s - 40 * n / r) / 4, s, r}')"
   grep "^threads " "$log" | sed "s/^/paper rebuild-every-10 /" >>"$report"
+fi
+# 4. The serial fraction of a step: a profile of the timed steps alone (perf
+#    enabled through its control FIFOs, so not the model's build) at one
+#    thread; samples outside the OpenMP regions are the serial work.
+PROFILE=${PROFILE:-$(command -v perf >/dev/null && echo 1 || echo 0)}
+if [ "$PROFILE" = 1 ]; then
+  for model in $MODELS; do
+    [ "$model" = paper ] && steps=$PAPER_STEPS || steps=$MEDIUM_STEPS
+    rm -f "$WORK/perf.ctl" "$WORK/perf.ack"; mkfifo "$WORK/perf.ctl" "$WORK/perf.ack"
+    log=$WORK/${model}_profile.log
+    perf record -D -1 --control "fifo:$WORK/perf.ctl,$WORK/perf.ack" -e cpu-clock -F 250 --call-graph dwarf,16384 \
+      -o "$WORK/${model}_perf.data" -- "$EXE" --section "$WORK/$model.json" --threads 1 --warmup "$WARMUP" --steps "$steps" \
+      --perf-control "$WORK/perf.ctl,$WORK/perf.ack" >"$log" 2>&1 \
+      || { echo "paper_model.sh: the profile of the $model model failed (log $log)" >&2; exit 1; }
+    perf script --no-demangle -F comm,ip,sym -i "$WORK/${model}_perf.data" 2>/dev/null | /usr/bin/python3 "$ROOT/bench/serial_fraction.py" >"$WORK/${model}_serial.txt"
+    printf "\n%s model, 1 thread, %s timed steps profiled:\n" "$model" "$steps"
+    cat "$WORK/${model}_serial.txt"
+  done
 fi
 printf "\nper run (pairs and bonds per particle, memory):\n"
 cat "$report"

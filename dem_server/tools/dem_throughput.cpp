@@ -80,6 +80,7 @@ struct Options {
   std::string section;         ///< DEM section file: the real workload instead of a packing
   bool digest = false;         ///< --data, --section: print a hash of the final state's bits
   int rebuild_every = 0;       ///< --section: rebuild the lists before every N-th timed step (0: only when due)
+  std::string perf_control;    ///< --section: "CTL_FIFO,ACK_FIFO" of a `perf record --control`, enabled for the timed steps only
 };
 
 Options parse(int argc, char** argv) {
@@ -92,13 +93,15 @@ Options parse(int argc, char** argv) {
                    "  dem_throughput --data FILE [--threads \"1 2\"] [--warmup 1000] [--steps 2000]\n"
                    "                 [--law linear|linear_pbond|damage_bond] [--local-damping A] [--digest]\n"
                    "  dem_throughput --section FILE [--threads \"1 2\"] [--warmup N] [--steps N] [--digest]\n"
-                   "                 [--rebuild-every N]\n\n"
+                   "                 [--rebuild-every N] [--perf-control CTL_FIFO,ACK_FIFO]\n\n"
                    "Without --data: settles a bed of N x N x layers spheres, then times --steps steps per thread count.\n"
                    "With --data: the peer benchmark on a LAMMPS data file (the PEERS_DIR folder of bench/dem_peers.sh);\n"
                    "damage_bond bonds every pair within 10 um by the damage-bond law, too strong to yield.\n"
                    "With --section: a DEM section as dem_server receives it (bench/paper_model.sh writes one from a\n"
                    "scenario), built once per thread count; prints the rate, pairs and bonds per particle, memory;\n"
                    "--rebuild-every N rebuilds the neighbour lists before every N-th timed step (the rebuild's cost).\n"
+                   "--perf-control: the two FIFOs of `perf record -D -1 --control fifo:CTL,ACK`: the profile is enabled\n"
+                   "for the timed steps only, not for building the model (bench/paper_model.sh, PROFILE=1).\n"
                    "--digest: also print a hash of the final state's bits (positions, velocities, spins, resultants,\n"
                    "pair history, contact forces), to check that a change to the code leaves results bit-identical.\n";
       std::exit(0);
@@ -130,6 +133,10 @@ Options parse(int argc, char** argv) {
     else if (a == "--local-damping") o.local_damping = dfc::parse_number_option(a, v, dfc::Bounds{0.0, 1.0});
     else if (a == "--section") o.section = v;
     else if (a == "--rebuild-every") o.rebuild_every = int(dfc::parse_count_option(a, v, 0, 1000000000));
+    else if (a == "--perf-control") {
+      if (v.find(',') == std::string::npos) throw std::runtime_error("--perf-control takes CTL_FIFO,ACK_FIFO (the FIFOs of perf record --control)");
+      o.perf_control = v;
+    }
     else if (a == "--threads") {
       o.threads.clear();
       std::istringstream list(v);
@@ -139,6 +146,7 @@ Options parse(int argc, char** argv) {
   }
   if (o.digest && o.data.empty() && o.section.empty()) throw std::runtime_error("--digest needs --data or --section (it hashes their final state)");
   if (!o.data.empty() && !o.section.empty()) throw std::runtime_error("--data and --section are two benchmarks: give one");
+  if (!o.perf_control.empty() && o.section.empty()) throw std::runtime_error("--perf-control needs --section (it profiles the timed steps of a section)");
   return o;
 }
 
@@ -302,11 +310,66 @@ std::string pairs_and_bonds(const Simulation& sim) {
   return out.str();
 }
 
+/// A `perf record --control fifo:CTL,ACK` session started disabled (-D -1):
+/// enable() and disable() send the commands and wait for perf's "ack", so
+/// that the profile holds the timed steps and nothing of the model's build
+/// (the paper model's generation takes longer than its steps).
+class PerfWindow {
+ public:
+  explicit PerfWindow(const std::string& fifos) {
+    if (fifos.empty()) return;
+    const auto comma = fifos.find(',');
+    control_.open(fifos.substr(0, comma));
+    ack_.open(fifos.substr(comma + 1));
+    if (!control_ || !ack_) throw std::runtime_error("--perf-control: cannot open the FIFOs " + fifos + " (start perf record --control first)");
+  }
+  void enable() { send("enable"); }
+  void disable() { send("disable"); }
+
+ private:
+  void send(const char* command) {
+    if (!control_.is_open()) return;
+    control_ << command << std::endl;
+    std::string reply;
+    if (!std::getline(ack_, reply) || reply.find("ack") == std::string::npos)
+      throw std::runtime_error(std::string("--perf-control: perf did not acknowledge ") + command + " (it answered '" + reply + "', stream " + (ack_.eof() ? "at end" : "open") + ")");
+  }
+  std::ofstream control_;
+  std::ifstream ack_;
+};
+
+/// The serial work a coupled run adds outside Simulation::step, on one
+/// thread whatever the thread count (dem_backend.cpp): every step the damping
+/// force total (a monitor), every advance the monitors (measure, momentum,
+/// bond counts). Returns "X ms per step, Y ms per advance", the best of three.
+std::string serial_monitor_cost(const Simulation& sim) {
+  const auto best_of_three = [](const auto& work) {
+    double best = 1e300;
+    for (int round = 0; round < 3; ++round) {
+      const auto t0 = std::chrono::steady_clock::now();
+      work();
+      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    return best;
+  };
+  volatile double sink = 0.0;  // keeps the sums from being optimised away
+  const double per_step = best_of_three([&] { sink = sink + sim.damping_force_total().x; });
+  const double per_advance = best_of_three([&] {
+    const Measurements m = measure(sim);
+    const BondCounts b = sim.bond_counts();
+    sink = sink + m.kinetic_energy + sim.momentum().x + double(b.intact);
+  });
+  std::ostringstream out;
+  out << per_step * 1e3 << " ms per step (damping total), " << per_advance * 1e3 << " ms per advance (measure, momentum, bond counts)";
+  return out.str();
+}
+
 /// The real workload: a DEM section built as dem_server builds it, stepped at rest.
 void run_section_benchmark(const Options& o) {
   std::ifstream in(o.section);
   if (!in) throw std::runtime_error("cannot read " + o.section);
   const nlohmann::json section = nlohmann::json::parse(in);
+  PerfWindow profile(o.perf_control);
   for (const int threads : o.threads) {
     nlohmann::json with_threads = section;
     with_threads["threads"] = threads;
@@ -318,6 +381,7 @@ void run_section_benchmark(const Options& o) {
     const double rss = status_kilobytes("VmRSS") * 1024.0;
     const std::string first = pairs_and_bonds(sim);
     const std::size_t rebuilds = sim.rebuild_count();
+    profile.enable();
     const auto t0 = std::chrono::steady_clock::now();
     if (o.rebuild_every > 0) {
       for (int done = 0; done < o.steps; done += o.rebuild_every) {
@@ -328,12 +392,13 @@ void run_section_benchmark(const Options& o) {
       sim.run(o.steps, model.dt);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    profile.disable();
     const double n = double(sim.particles().size());
     std::cout << "threads " << sim.threads() << ": " << n * o.steps / seconds << " particle-steps/s (" << seconds << " s for " << o.steps
               << " steps of " << sim.particles().size() << " particles, dt " << model.dt << " s, " << sim.rebuild_count() - rebuilds
               << " rebuilds; first step " << first << ", last " << pairs_and_bonds(sim) << "; resident memory " << rss / n
               << " bytes per particle (" << rss / 1e9 << " GB, peak " << status_kilobytes("VmHWM") * 1024.0 / 1e9 << " GB); built in "
-              << build_seconds << " s";
+              << build_seconds << " s; serial work of a coupled run outside the step: " << serial_monitor_cost(sim);
     if (o.digest) std::cout << ", state digest " << std::hex << state_digest(sim) << std::dec;
     std::cout << ")" << std::endl;
   }
