@@ -99,14 +99,50 @@ std::optional<Layout> layout_of(const XdmfSnapshot& snapshot) {
   return layout;
 }
 
-// Bond midpoints of a particle snapshot (bond_position [m, 3] with bond_state [m]):
-// m, or nothing when the snapshot has no bonds to draw.
+bool is_index_rows(const XdmfArrayInfo* array, std::int64_t width) {
+  return array != nullptr && array->shape.size() == 2 && array->shape[1] == width && array->shape[0] > 0 && is_integer(array->dtype);
+}
+
+// The bonds of a particle snapshot as lines: bond_particle_index [m, 2] rows
+// of particle_position. Null when the snapshot has none (or an older server
+// sent only the midpoints).
+const XdmfArrayInfo* bond_lines(const XdmfSnapshot& snapshot) {
+  if (snapshot.kind != "particles" || !point_count(find(snapshot, "particle_position"))) return nullptr;
+  const XdmfArrayInfo* index = find(snapshot, "bond_particle_index");
+  return is_index_rows(index, 2) ? index : nullptr;
+}
+
+// Bond midpoints of a particle snapshot (bond_position [m, 3] with bond_state [m])
+// from a server that sends no bond_particle_index: m, or nothing when the
+// snapshot has no bonds to draw as points.
 std::optional<std::int64_t> bond_count(const XdmfSnapshot& snapshot) {
-  if (snapshot.kind != "particles") return std::nullopt;
+  if (snapshot.kind != "particles" || bond_lines(snapshot) != nullptr) return std::nullopt;
   const std::optional<std::int64_t> points = point_count(find(snapshot, "bond_position"));
   const XdmfArrayInfo* state = find(snapshot, "bond_state");
   if (!points || state == nullptr || state->shape.size() != 1 || state->shape[0] != *points) return std::nullopt;
   return points;
+}
+
+// The walls and the pile of a particle snapshot: wall_facets [f, 3] rows of wall_vertices.
+const XdmfArrayInfo* wall_triangles(const XdmfSnapshot& snapshot) {
+  if (snapshot.kind != "particles" || !point_count(find(snapshot, "wall_vertices"))) return nullptr;
+  const XdmfArrayInfo* facets = find(snapshot, "wall_facets");
+  return is_index_rows(facets, 3) ? facets : nullptr;
+}
+
+// The name ParaView shows: the array's name with its unit where the name
+// does not already end in one (protocol/SPEC.md §6.4 fixes the dataset names,
+// so the unit is added here, not in the file).
+std::string display_name(const std::string& name) {
+  static const std::pair<std::string_view, std::string_view> named[] = {
+      {"particle_radius", "particle_radius_m"},         {"particle_velocity", "particle_velocity_m_s"},
+      {"node_displacement", "node_displacement_m"},     {"node_velocity", "node_velocity_m_s"},
+      {"node_external_force", "node_external_force_n"}, {"zone_stress", "zone_stress_pa"},
+      {"wall_facet_wall", "wall_index"},
+  };
+  for (const auto& [from, to] : named)
+    if (name == from) return std::string(to);
+  return name;
 }
 
 // XDMF AttributeType from the per-entity component count; nothing for shapes ParaView cannot label.
@@ -136,31 +172,58 @@ class GridWriter {
   void attribute(const XdmfSnapshot& snapshot, const XdmfArrayInfo& array, const char* center) {
     const std::optional<const char*> type = attribute_type(array);
     if (!type) return;
-    out_ << "        <Attribute Name=\"" << escape(array.name) << "\" AttributeType=\"" << *type << "\" Center=\"" << center << "\">\n";
+    out_ << "        <Attribute Name=\"" << escape(display_name(array.name)) << "\" AttributeType=\"" << *type << "\" Center=\"" << center << "\">\n";
     data_item(snapshot, array, "          ");
     out_ << "        </Attribute>\n";
   }
 
-  // The bonds of a particle snapshot as points at their midpoints, with their
-  // state (1 intact, 2 damaged, 3 broken in tension, 4 broken in shear) and,
-  // where the DEM sends it, the damage variable D (bond_damage).
+  // The bonds of a particle snapshot as lines between the two sphere centres
+  // (bond_particle_index into particle_position) with every bond_* array of
+  // one value per bond as a cell attribute: state (1 intact, 2 damaged, 3
+  // broken in tension, 4 broken in shear), forces, opening, damage. From an
+  // older server, points at the midpoints (bond_position) with their state
+  // and damage.
   void bond_grid(const XdmfSnapshot& snapshot) {
+    if (const XdmfArrayInfo* index = bond_lines(snapshot)) {
+      const std::int64_t bonds = index->shape[0];
+      open_grid(snapshot, "_bonds_");
+      out_ << "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << bonds << "\" NodesPerElement=\"2\">\n";
+      data_item(snapshot, *index, "          ");
+      out_ << "        </Topology>\n";
+      geometry(snapshot, *find(snapshot, "particle_position"));
+      for (const XdmfArrayInfo& array : snapshot.arrays) {
+        if (!array.name.starts_with("bond_") || &array == index || array.name == "bond_position" || array.shape.empty() ||
+            array.shape[0] != bonds)
+          continue;
+        attribute(snapshot, array, "Cell");
+      }
+      out_ << "      </Grid>\n";
+      return;
+    }
     const std::optional<std::int64_t> bonds = bond_count(snapshot);
     const XdmfArrayInfo* position = find(snapshot, "bond_position");
     const XdmfArrayInfo* state = find(snapshot, "bond_state");
     if (!bonds || position == nullptr || state == nullptr) return;  // bond_count checked them; said again for the reader (and GCC)
-    const std::string index = snapshot.group_path.substr(snapshot.group_path.find_last_of('/') + 1);
-    out_ << "      <Grid Name=\"" << escape(snapshot.role + "_bonds_" + index) << "\" GridType=\"Uniform\">\n";
-    out_ << "        <Time Value=\"" << number_text(snapshot.time) << "\"/>\n";
-    out_ << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << *bonds << "\" NodesPerElement=\"1\">\n";
-    out_ << "          <DataItem Dimensions=\"" << *bonds << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << escape(h5_file_name_)
-         << ':' << polyvertex_connectivity_path(*bonds) << "</DataItem>\n";
-    out_ << "        </Topology>\n";
-    out_ << "        <Geometry GeometryType=\"XYZ\">\n";
-    data_item(snapshot, *position, "          ");
-    out_ << "        </Geometry>\n";
+    open_grid(snapshot, "_bonds_");
+    polyvertex_topology(*bonds);
+    geometry(snapshot, *position);
     attribute(snapshot, *state, "Node");
     if (const XdmfArrayInfo* damage = find(snapshot, "bond_damage")) attribute(snapshot, *damage, "Node");  // damage_bond's D
+    out_ << "      </Grid>\n";
+  }
+
+  // The walls and the pile of a particle snapshot as triangles where they are
+  // at that time, with the index of the wall each facet belongs to.
+  void wall_grid(const XdmfSnapshot& snapshot) {
+    const XdmfArrayInfo* facets = wall_triangles(snapshot);
+    if (facets == nullptr) return;
+    open_grid(snapshot, "_walls_");
+    out_ << "        <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << facets->shape[0] << "\">\n";
+    data_item(snapshot, *facets, "          ");
+    out_ << "        </Topology>\n";
+    geometry(snapshot, *find(snapshot, "wall_vertices"));
+    if (const XdmfArrayInfo* wall = find(snapshot, "wall_facet_wall"); wall != nullptr && wall->shape.size() == 1 && wall->shape[0] == facets->shape[0])
+      attribute(snapshot, *wall, "Cell");
     out_ << "      </Grid>\n";
   }
 
@@ -173,22 +236,15 @@ class GridWriter {
     const std::int64_t points = layout->points;
     const std::int64_t cells = layout->cells;
 
-    const std::string index = snapshot.group_path.substr(snapshot.group_path.find_last_of('/') + 1);
-    out_ << "      <Grid Name=\"" << escape(snapshot.role + "_" + index) << "\" GridType=\"Uniform\">\n";
-    out_ << "        <Time Value=\"" << number_text(snapshot.time) << "\"/>\n";
+    open_grid(snapshot, "_");
     if (zones != nullptr) {
       out_ << "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" << cells << "\">\n";
       data_item(snapshot, *zones, "          ");
       out_ << "        </Topology>\n";
     } else {
-      out_ << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << points << "\" NodesPerElement=\"1\">\n";
-      out_ << "          <DataItem Dimensions=\"" << points << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << escape(h5_file_name_)
-           << ':' << polyvertex_connectivity_path(points) << "</DataItem>\n";
-      out_ << "        </Topology>\n";
+      polyvertex_topology(points);
     }
-    out_ << "        <Geometry GeometryType=\"XYZ\">\n";
-    data_item(snapshot, *positions, "          ");
-    out_ << "        </Geometry>\n";
+    geometry(snapshot, *positions);
 
     for (const XdmfArrayInfo& array : snapshot.arrays) {
       if (&array == positions || &array == zones || array.shape.empty()) continue;
@@ -205,6 +261,26 @@ class GridWriter {
   }
 
  private:
+  // Opens the uniform grid of `snapshot` named <role><infix><index>, at its time.
+  void open_grid(const XdmfSnapshot& snapshot, const char* infix) {
+    const std::string index = snapshot.group_path.substr(snapshot.group_path.find_last_of('/') + 1);
+    out_ << "      <Grid Name=\"" << escape(snapshot.role + infix + index) << "\" GridType=\"Uniform\">\n";
+    out_ << "        <Time Value=\"" << number_text(snapshot.time) << "\"/>\n";
+  }
+
+  void polyvertex_topology(std::int64_t points) {
+    out_ << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << points << "\" NodesPerElement=\"1\">\n";
+    out_ << "          <DataItem Dimensions=\"" << points << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << escape(h5_file_name_)
+         << ':' << polyvertex_connectivity_path(points) << "</DataItem>\n";
+    out_ << "        </Topology>\n";
+  }
+
+  void geometry(const XdmfSnapshot& snapshot, const XdmfArrayInfo& positions) {
+    out_ << "        <Geometry GeometryType=\"XYZ\">\n";
+    data_item(snapshot, positions, "          ");
+    out_ << "        </Geometry>\n";
+  }
+
   std::ostringstream& out_;
   const std::string& h5_file_name_;
 };
@@ -234,26 +310,26 @@ std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfS
   out << "<?xml version=\"1.0\" ?>\n";
   out << "<Xdmf Version=\"2.0\">\n";
   out << "  <Domain>\n";
+  // Per role: its particles or grid, then the bonds and the walls of its particle snapshots.
+  using Layer = void (GridWriter::*)(const XdmfSnapshot&);
+  const std::pair<const char*, Layer> layers[] = {{"", &GridWriter::grid}, {"_bonds", &GridWriter::bond_grid}, {"_walls", &GridWriter::wall_grid}};
   for (const std::string& role : roles) {
-    std::ostringstream grids;
-    GridWriter writer(grids, h5_file_name);
-    for (const XdmfSnapshot& snapshot : snapshots) {
-      if (snapshot.role == role) writer.grid(snapshot);
-    }
-    if (!grids.str().empty()) {  // an empty temporal collection makes readers fail
-      out << "    <Grid Name=\"" << escape(role) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const auto& [suffix, layer] : layers) {
+      std::ostringstream grids;
+      GridWriter writer(grids, h5_file_name);
+      std::string kind;
+      for (const XdmfSnapshot& snapshot : snapshots) {
+        if (snapshot.role != role) continue;
+        (writer.*layer)(snapshot);
+        if (kind.empty() && (snapshot.kind == "particles" || snapshot.kind == "grid")) kind = snapshot.kind;
+      }
+      if (grids.str().empty()) continue;  // an empty temporal collection makes readers fail
+      // The block's name says what it holds: dem_particles, continuum_grid, dem_bonds, dem_walls.
+      const std::string name = role + (*suffix != '\0' ? std::string(suffix) : "_" + kind);
+      out << "    <Grid Name=\"" << escape(name) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
       out << grids.str();
       out << "    </Grid>\n";
     }
-    std::ostringstream bond_grids;
-    GridWriter bond_writer(bond_grids, h5_file_name);
-    for (const XdmfSnapshot& snapshot : snapshots) {
-      if (snapshot.role == role) bond_writer.bond_grid(snapshot);
-    }
-    if (bond_grids.str().empty()) continue;
-    out << "    <Grid Name=\"" << escape(role + "_bonds") << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    out << bond_grids.str();
-    out << "    </Grid>\n";
   }
   out << "  </Domain>\n";
   out << "</Xdmf>\n";

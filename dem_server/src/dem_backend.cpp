@@ -8,10 +8,10 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
-#include "dfc/dem/damage_bond_law.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/particle_stress.hpp"
 #include "dfc/dem/region_config.hpp"
+#include "dfc/dem/snapshot_pairs.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 #include "dfc/protocol/progress_monitors.hpp"
 
@@ -26,35 +26,6 @@ std::vector<double> flatten(std::span<const Vec3> v) {
   out.reserve(3 * v.size());
   for (const auto& x : v) out.insert(out.end(), {x.x, x.y, x.z});
   return out;
-}
-
-/// Every pair that was ever bonded: where (between the surfaces, on the
-/// centre line) and its state (bond_state.hpp: 1 intact, 2 damaged, 3 broken in
-/// tension, 4 broken in shear), for bond maps (seed figures of bond states).
-void append_bond_arrays(const Simulation& s, std::vector<protocol::Array>& arrays) {
-  const ParticleStore& p = s.particles();
-  const PairContacts& pairs = s.pair_contacts();
-  const PeriodicSpace space = s.periodic_cell() ? PeriodicSpace(*s.periodic_cell()) : PeriodicSpace();
-  // damage_bond keeps its damage variable D (Ciantia et al. 2024 Eq. 2) in a
-  // history column: written per bond as bond_damage (1 once broken).
-  const bool has_damage = s.settings().particle_law.info != nullptr && s.settings().particle_law.info->keyword == DamageBondLaw::keyword;
-  std::vector<Vec3> where;
-  std::vector<std::int64_t> state;
-  std::vector<double> damage;
-  for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const double* history = pairs.history.data() + k * pairs.stride;
-    const BondState b = bond_state(history);
-    if (b == BondState::none) continue;
-    const std::uint32_t i = pairs.first[k], j = pairs.second[k];
-    const Vec3 d = space.branch(p.position[i], p.position[j]);
-    where.push_back(p.position[i] + (p.radius[i] / (p.radius[i] + p.radius[j])) * d);
-    state.push_back(std::int64_t(b));
-    if (has_damage) damage.push_back(is_bonded(b) ? history[DamageBondLaw::damage] : 1.0);
-  }
-  const auto m = std::int64_t(state.size());
-  arrays.push_back(protocol::Array::from_f64("bond_position", {m, 3}, flatten(where)));
-  arrays.push_back(protocol::Array::from_i64("bond_state", {m}, state));
-  if (has_damage) arrays.push_back(protocol::Array::from_f64("bond_damage", {m}, damage));
 }
 
 /// Height of a profile slice: one REV cell of the coarsest zone. A slice
@@ -380,15 +351,21 @@ std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
   if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, model_.generation ? &model_.generation->profile : nullptr, arrays);
   if (!s.walls().empty()) {
     std::vector<Vec3> vertices;
-    std::vector<std::int64_t> facets;
-    for (const auto& wall : s.walls()) {
+    std::vector<std::int64_t> facets, facet_wall;
+    for (std::size_t w = 0; w < s.walls().size(); ++w) {
+      const Wall& wall = s.walls()[w];
       const auto offset = std::int64_t(vertices.size());
       vertices.insert(vertices.end(), wall.vertices.begin(), wall.vertices.end());
-      for (const auto& f : wall.facets)
+      for (const auto& f : wall.facets) {
         for (const auto v : f) facets.push_back(offset + std::int64_t(v));
+        facet_wall.push_back(std::int64_t(w));
+      }
     }
     arrays.push_back(protocol::Array::from_f64("wall_vertices", {std::int64_t(vertices.size()), 3}, flatten(vertices)));
     arrays.push_back(protocol::Array::from_i64("wall_facets", {std::int64_t(facets.size() / 3), 3}, facets));
+    // Which wall each facet is (its index in the DEM's wall list, the order of
+    // the wall_<name> monitors): ParaView thresholds on it to show the pile alone.
+    arrays.push_back(protocol::Array::from_i64("wall_facet_wall", {std::int64_t(facet_wall.size())}, facet_wall));
   }
   return arrays;
 }

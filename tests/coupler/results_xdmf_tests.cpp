@@ -130,11 +130,16 @@ TEST_F(ResultsXdmf, DescribesParticlesAndGridOverTime) {
   EXPECT_EQ(count(xml_, "<Time Value="), 6U);
   EXPECT_EQ(count(xml_, "TopologyType=\"Polyvertex\" NumberOfElements=\"6\""), 3U);
   EXPECT_EQ(count(xml_, "TopologyType=\"Hexahedron\" NumberOfElements=\"4\""), 3U);
-  EXPECT_EQ(count(xml_, "<Attribute Name=\"zone_stress\" AttributeType=\"Tensor6\" Center=\"Cell\">"), 3U);
-  EXPECT_EQ(count(xml_, "<Attribute Name=\"node_displacement\" AttributeType=\"Vector\" Center=\"Node\">"), 3U);
-  EXPECT_EQ(count(xml_, "<Attribute Name=\"particle_radius\" AttributeType=\"Scalar\" Center=\"Node\">"), 3U);
+  // Names say the quantity's unit where the dataset's name does not.
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"zone_stress_pa\" AttributeType=\"Tensor6\" Center=\"Cell\">"), 3U);
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"node_displacement_m\" AttributeType=\"Vector\" Center=\"Node\">"), 3U);
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"particle_radius_m\" AttributeType=\"Scalar\" Center=\"Node\">"), 3U);
+  EXPECT_EQ(count(xml_, "<Attribute Name=\"particle_velocity_m_s\" AttributeType=\"Vector\" Center=\"Node\">"), 3U);
   EXPECT_EQ(count(xml_, "<Attribute Name=\"particle_id\" AttributeType=\"Scalar\" Center=\"Node\">"), 3U);
   EXPECT_EQ(count(xml_, "wall_force"), 0U);  // leading dimension is not the particle count
+  // Blocks are named for what they hold.
+  EXPECT_EQ(count(xml_, "<Grid Name=\"dem_particles\" GridType=\"Collection\""), 1U);
+  EXPECT_EQ(count(xml_, "<Grid Name=\"fdm_grid\" GridType=\"Collection\""), 1U);
 }
 
 TEST_F(ResultsXdmf, TimesReadBackExactly) {
@@ -154,7 +159,7 @@ TEST(XdmfDocument, LeavesOutSnapshotsWithoutGeometryAndEscapesNames) {
   const std::string xml = xdmf_document("r.h5", snapshots);
   EXPECT_EQ(nesting_error(xml), "");
   EXPECT_EQ(count(xml, "<Grid Name=\"dem\""), 0U);  // an empty temporal collection would break readers
-  EXPECT_EQ(count(xml, "Name=\"a&amp;b\""), 1U);
+  EXPECT_EQ(count(xml, "<Grid Name=\"a&amp;b_particles\""), 1U);  // the block, named for what it holds
   EXPECT_EQ(count(xml, "Name=\"x&lt;y\""), 1U);
 }
 
@@ -167,9 +172,10 @@ TEST(XdmfDocument, GridWithoutHexahedraIsShownAsPoints) {
   EXPECT_EQ(count(xml, "Hexahedron"), 0U);
 }
 
-TEST(XdmfDocument, BondsOfAParticleSnapshotAreASecondCollectionOfPointsWithTheirState) {
-  // Three bonds among four particles: the bonds' own collection, points at the
-  // midpoints (bond_position) labelled by bond_state, beside the particles.
+TEST(XdmfDocument, BondsOfAnOlderServerAreASecondCollectionOfPointsWithTheirState) {
+  // Three bonds among four particles from a server that sends no
+  // bond_particle_index: the bonds' own collection, points at the midpoints
+  // (bond_position) labelled by bond_state, beside the particles.
   XdmfSnapshot dem{"dem", "/snapshots/dem/000000", 0, 0.5, "particles",
                    {{"particle_position", protocol::DType::f64, {4, 3}},
                     {"bond_position", protocol::DType::f64, {3, 3}},
@@ -186,6 +192,56 @@ TEST(XdmfDocument, BondsOfAParticleSnapshotAreASecondCollectionOfPointsWithTheir
   // A bond_state that does not match the positions is not drawn.
   dem.arrays.back().shape = {2};
   EXPECT_EQ(bond_point_count(dem), std::nullopt);
+}
+
+TEST(XdmfDocument, BondsAreLinesBetweenTheSphereCentresWithTheirArraysOnTheCells) {
+  // Three bonds among four particles: Polyline cells of two nodes whose
+  // connectivity is bond_particle_index and whose points are the particles'.
+  XdmfSnapshot dem{"dem", "/snapshots/dem/000002", 0, 0.5, "particles",
+                   {{"particle_position", protocol::DType::f64, {4, 3}},
+                    {"bond_position", protocol::DType::f64, {3, 3}},
+                    {"bond_state", protocol::DType::i64, {3}},
+                    {"bond_particle_index", protocol::DType::i64, {3, 2}},
+                    {"bond_particle_id", protocol::DType::i64, {3, 2}},
+                    {"bond_normal_force_n", protocol::DType::f64, {3}},
+                    {"bond_shear_force_n", protocol::DType::f64, {3}},
+                    {"bond_opening_m", protocol::DType::f64, {3}}}};
+  const std::vector<XdmfSnapshot> snapshots = {dem};
+  const std::string xml = xdmf_document("r.h5", snapshots);
+  EXPECT_EQ(nesting_error(xml), "");
+  EXPECT_EQ(bond_point_count(dem), std::nullopt);  // lines need no Polyvertex connectivity
+  EXPECT_EQ(count(xml, "<Grid Name=\"dem_bonds\" GridType=\"Collection\" CollectionType=\"Temporal\">"), 1U);
+  EXPECT_EQ(count(xml, "<Grid Name=\"dem_bonds_000002\""), 1U);
+  EXPECT_EQ(count(xml, "<Topology TopologyType=\"Polyline\" NumberOfElements=\"3\" NodesPerElement=\"2\">\n          <DataItem Dimensions=\"3 2\""), 1U);
+  EXPECT_EQ(count(xml, "r.h5:/snapshots/dem/000002/bond_particle_index</DataItem>"), 1U);
+  EXPECT_EQ(count(xml, "r.h5:/snapshots/dem/000002/particle_position</DataItem>"), 2U);  // the particles' and the bonds' geometry
+  EXPECT_EQ(count(xml, "bond_position"), 0U);
+  for (const char* name : {"bond_state", "bond_normal_force_n", "bond_shear_force_n", "bond_opening_m"})
+    EXPECT_EQ(count(xml, std::string("<Attribute Name=\"") + name + "\" AttributeType=\"Scalar\" Center=\"Cell\">"), 1U) << name;
+  EXPECT_EQ(count(xml, "Name=\"bond_particle_id\""), 0U);  // two values per cell: in the file, not a ParaView attribute
+  // An index array that is not two integer columns is not a line connectivity: the midpoints again.
+  dem.arrays[3].shape = {3, 3};
+  EXPECT_EQ(bond_point_count(dem), std::optional<std::int64_t>(3));
+}
+
+TEST(XdmfDocument, WallsAndThePileAreTrianglesWithTheirWallIndex) {
+  XdmfSnapshot dem{"dem", "/snapshots/dem/000001", 0, 0.5, "particles",
+                   {{"particle_position", protocol::DType::f64, {4, 3}},
+                    {"wall_vertices", protocol::DType::f64, {9, 3}},
+                    {"wall_facets", protocol::DType::i64, {8, 3}},
+                    {"wall_facet_wall", protocol::DType::i64, {8}}}};
+  const std::vector<XdmfSnapshot> snapshots = {dem, dem};
+  const std::string xml = xdmf_document("r.h5", snapshots);
+  EXPECT_EQ(nesting_error(xml), "");
+  EXPECT_EQ(count(xml, "<Grid Name=\"dem_walls\" GridType=\"Collection\" CollectionType=\"Temporal\">"), 1U);
+  EXPECT_EQ(count(xml, "<Topology TopologyType=\"Triangle\" NumberOfElements=\"8\">"), 2U);
+  EXPECT_EQ(count(xml, "r.h5:/snapshots/dem/000001/wall_vertices</DataItem>"), 2U);
+  EXPECT_EQ(count(xml, "<Attribute Name=\"wall_index\" AttributeType=\"Scalar\" Center=\"Cell\">"), 2U);
+  EXPECT_EQ(count(xml, "Name=\"wall_vertices\""), 0U);  // not a particle attribute (9 rows, not 4)
+  // Facets that are not three integer columns draw no walls.
+  dem.arrays[2].shape = {8, 4};
+  const std::vector<XdmfSnapshot> bad = {dem};
+  EXPECT_EQ(count(xdmf_document("r.h5", bad), "dem_walls"), 0U);
 }
 
 TEST(XdmfDocument, UnwritableSidecarIsUserError) {

@@ -116,6 +116,8 @@ TEST(DemBackend, SnapshotHoldsParticlesAndWalls) {
   EXPECT_EQ(shape_of("particle_id"), (std::vector<std::int64_t>{n}));
   EXPECT_EQ(shape_of("wall_vertices"), (std::vector<std::int64_t>{9, 3}));
   EXPECT_EQ(shape_of("wall_facets"), (std::vector<std::int64_t>{8, 3}));
+  EXPECT_EQ(shape_of("wall_facet_wall"), (std::vector<std::int64_t>{8}));  // one wall: the interface
+  EXPECT_EQ(shape_of("bond_particle_index"), (std::vector<std::int64_t>{}));  // an unbonded law sends no bonds
   EXPECT_EQ(backend.identity().role, "dem");
 }
 

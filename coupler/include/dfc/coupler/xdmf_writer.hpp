@@ -4,7 +4,8 @@
 // in the HDF5 file; the XDMF only describes them, referring to datasets as
 // "<file>.h5:/snapshots/<role>/<index>/<array>" relative to the sidecar.
 //
-// One temporal collection per role. A "particles" snapshot becomes a
+// One temporal collection per role, named for what it holds ("dem_particles",
+// "continuum_grid"). A "particles" snapshot becomes a
 // Polyvertex grid on particle_position (its connectivity 0..n-1 is a dataset
 // of the results file, polyvertex_connectivity_path(n): the Xdmf3 reader makes
 // no cells from a Polyvertex topology without one); a "grid" snapshot a Hexahedron grid
@@ -13,7 +14,16 @@
 // become node attributes, the zone count cell attributes, with Scalar /
 // Vector / Tensor6 / Tensor chosen from the trailing dimension (1, 3, 6, 9);
 // anything else is left out. Snapshots of other kinds, or without geometry,
-// or with no points, are left out.
+// or with no points, are left out. Attribute names carry their unit where
+// the dataset's name does not (particle_radius -> particle_radius_m, ...).
+//
+// A particle snapshot's bonds (bond_particle_index [m,2], rows of
+// particle_position: dem_server/include/dfc/dem/snapshot_pairs.hpp) form a
+// second collection "<role>_bonds" of Polyline cells of two nodes, with every
+// bond_* array of m values as a cell attribute; from a server that sends only
+// bond_position and bond_state, points at the midpoints. Its walls and pile
+// (wall_vertices, wall_facets) form a third, "<role>_walls", of triangles
+// with wall_facet_wall shown as "wall_index".
 //
 // Tensor6 components in XDMF are ordered xx, xy, xz, yy, yz, zz; zone_stress
 // must be written in that order for ParaView's component names to be right.
@@ -49,8 +59,9 @@ struct XdmfSnapshot {
 /// without hexahedra); nothing when it is drawn otherwise or left out.
 [[nodiscard]] std::optional<std::int64_t> polyvertex_point_count(const XdmfSnapshot& snapshot);
 /// The bond count when `snapshot` (particles) carries bond_position [m, 3] and
-/// bond_state [m]: the sidecar then draws them as a second collection
-/// "<role>_bonds", points at the bond midpoints with their state.
+/// bond_state [m] but no bond_particle_index (an older server): the sidecar
+/// then draws them as points at the bond midpoints with their state, which
+/// need a Polyvertex connectivity of m. Nothing when the bonds are drawn as lines.
 [[nodiscard]] std::optional<std::int64_t> bond_point_count(const XdmfSnapshot& snapshot);
 /// Where the results file holds 0, 1, ..., points-1 (int64) for Polyvertex topologies: "/xdmf/polyvertex_<points>".
 [[nodiscard]] std::string polyvertex_connectivity_path(std::int64_t points);

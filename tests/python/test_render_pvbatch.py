@@ -1,0 +1,39 @@
+#!/usr/bin/env python3
+"""./vc render with ParaView's pvbatch: the coupler runs the short pile scenario
+of the end-to-end tests and tools/render.py --renderer pvbatch draws its last
+DEM snapshot from results.xdmf into a PNG that must not be blank. Skipped
+(exit code 77) where pvbatch is not on PATH: Debian's paraview package is
+large and not a dependency of the project.
+
+    test_render_pvbatch.py COUPLER SOURCE_DIR OUT_DIR
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+from dfc_test_support import require_modules
+
+if shutil.which("pvbatch") is None:
+    print("SKIPPED: pvbatch (ParaView's Python) is not on PATH; tools/render.py uses its matplotlib path here")
+    sys.exit(77)
+require_modules("numpy", "h5py", "matplotlib")
+
+import matplotlib.image  # noqa: E402
+import numpy as np  # noqa: E402
+
+COUPLER, SOURCE, OUT = sys.argv[1:4]
+shutil.rmtree(OUT, ignore_errors=True)
+run_dir = os.path.join(OUT, "run")
+subprocess.run([COUPLER, "run", os.path.join(SOURCE, "tests/e2e/scenarios/pile_short.json"), "--out", run_dir, "--no-progress"], check=True)
+pictures = os.path.join(OUT, "pictures")
+subprocess.run([sys.executable, os.path.join(SOURCE, "tools/render.py"), run_dir, "--snapshot", "-1", "--renderer", "pvbatch",
+                "--out", pictures], check=True)
+png = [name for name in os.listdir(pictures) if name.endswith(".png")]
+if len(png) != 1:
+    sys.exit(f"expected one PNG in {pictures}, found {png}")
+image = matplotlib.image.imread(os.path.join(pictures, png[0]))
+colours = np.unique((image[..., :3] * 255).astype(np.uint8).reshape(-1, 3), axis=0)
+if len(colours) < 10:
+    sys.exit(f"{png[0]} has {len(colours)} colours: blank")
+print(f"pvbatch drew {png[0]}: {image.shape[1]} x {image.shape[0]} pixels, {len(colours)} colours")

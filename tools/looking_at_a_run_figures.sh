@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# docs/looking_at_a_run.md's figure and size table, in one command:
+#   tools/looking_at_a_run_figures.sh BUILD_DIR
+# runs the bonded pile of tests/e2e/scenarios/pile_bonded_restart.json for 120
+# exchanges with a snapshot every 40 (what the test python.run_view runs; a
+# few seconds), draws its last snapshot with tools/render.py into
+# docs/figures/looking_at_a_run/ and prints the bytes per particle per
+# snapshot (tools/snapshot_bytes.py).
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BUILD=$(cd "${1:?usage: $0 BUILD_DIR}" && pwd)
+PYTHON=/usr/bin/python3
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+"$PYTHON" - "$ROOT/tests/e2e/scenarios/pile_bonded_restart.json" "$WORK/scenario.json" <<'PY'
+import json, sys
+scenario = json.load(open(sys.argv[1]))
+scenario["name"] = "run_view"
+scenario["run"].update({"exchanges": 120, "snapshot_every": 40, "deadline_s": 300})
+json.dump(scenario, open(sys.argv[2], "w"), indent=1)
+PY
+"$BUILD/bin/coupler" run "$WORK/scenario.json" --out "$WORK/run" --no-progress
+FIGURES="$ROOT/docs/figures/looking_at_a_run"
+mkdir -p "$FIGURES"
+"$PYTHON" "$ROOT/tools/render.py" "$WORK/run" --snapshot -1 --renderer matplotlib --dpi 110 --out "$WORK/pictures"
+cp "$WORK"/pictures/snapshot_*.png "$FIGURES/pile_bonded_section.png"
+echo "wrote $FIGURES/pile_bonded_section.png"
+"$PYTHON" "$ROOT/tools/snapshot_bytes.py" "$WORK/run"
