@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "dfc/common/echo.hpp"
+
 namespace dfc {
 
 namespace {
@@ -20,11 +22,7 @@ std::string type_name(const nlohmann::json& value) {
   }
 }
 
-std::string short_dump(const nlohmann::json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
-  return text;
-}
+std::string short_dump(const nlohmann::json& value) { return echoed(value.dump()); }
 
 std::string format_number(double x) {
   std::ostringstream out;
@@ -64,7 +62,7 @@ ConfigReader ConfigReader::declared_as_section(const SectionDeclaration& declara
 }
 
 std::string ConfigReader::key_path(std::string_view key) const {
-  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+  return path_.empty() ? echoed(key) : path_ + "." + echoed(key);
 }
 
 const ParameterDeclaration* ConfigReader::declared(std::string_view key) const {
@@ -292,7 +290,7 @@ std::string ConfigReader::string(std::string_view key) {
     if (std::find(p->choices.begin(), p->choices.end(), value) == p->choices.end()) {
       std::string list;
       for (const auto& a : p->choices) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-      fail(key, "unknown value \"" + value + "\"; expected one of " + list);
+      fail(key, "unknown value \"" + echoed(value) + "\"; expected one of " + list);
     }
   }
   if (p != nullptr && key == declaration_->selector)
@@ -311,7 +309,7 @@ std::string ConfigReader::choice(std::string_view key, const std::vector<std::st
   if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-    fail(key, "unknown value \"" + value + "\"; expected one of " + list);
+    fail(key, "unknown value \"" + echoed(value) + "\"; expected one of " + list);
   }
   return value;
 }

@@ -8,13 +8,21 @@ namespace {
 
 using nlohmann::json;
 
-std::string def_name(const SectionDeclaration& section) { return section.name; }
+// A section in an object that includes a file, or nested in one, is a patch
+// of the included file's section (a JSON Merge Patch): its required keys may
+// come from that file, at any depth. So each section has two forms: complete,
+// and patch (the same keys, none required, its sections patches too).
+enum class Form { complete, patch };
 
-json reference(const SectionDeclaration& section, json& defs) {
-  const std::string name = def_name(section);
+std::string def_name(const SectionDeclaration& section, Form form) { return form == Form::patch ? patch_def_name(section) : section.name; }
+
+json section_body(const SectionDeclaration& section, json& defs, Form form);
+
+json reference(const SectionDeclaration& section, json& defs, Form form) {
+  const std::string name = def_name(section, form);
   if (!defs.contains(name)) {
     defs[name] = json::object();  // placeholder: a section may refer to itself
-    defs[name] = section_schema(section, defs);
+    defs[name] = form == Form::patch ? section_body(section, defs, Form::patch) : section_schema(section, defs);
   }
   return json{{"$ref", "#/$defs/" + name}};
 }
@@ -37,7 +45,29 @@ std::string description(const ParameterDeclaration& p) {
   return text;
 }
 
-json value_schema(const ParameterDeclaration& p, json& defs) {
+// A scenario is read as JSON Merge Patches (RFC 7386: includes, variants), in
+// which null removes a key: "variants": null drops an included file's
+// variants, and a null given without an include is the key left out. So a key
+// that may be absent may also be null. A required key may not: null would
+// leave it missing.
+void allow_null(json& schema) {
+  if (schema.contains("type")) {
+    // Typed values: a type list keeps the bounds, which apply to their type only.
+    schema["type"] = json::array({schema["type"], "null"});
+    if (schema.contains("enum")) schema["enum"].push_back(nullptr);
+    return;
+  }
+  if (schema.contains("$ref")) {
+    // A section: if/else, not anyOf, so that a validator reports an error
+    // inside the section at its own key path rather than at the section.
+    schema["if"] = {{"type", "null"}};
+    schema["else"] = {{"$ref", schema["$ref"]}};
+    schema.erase("$ref");
+  }
+  // Untyped (any value): null is already a value.
+}
+
+json value_schema(const ParameterDeclaration& p, json& defs, Form form) {
   json schema;
   switch (p.type) {
     case ValueType::number:
@@ -69,17 +99,18 @@ json value_schema(const ParameterDeclaration& p, json& defs) {
     }
     case ValueType::strings: schema = {{"type", "array"}, {"items", {{"type", "string"}}}}; break;
     case ValueType::object:
-      if (p.section != nullptr) schema = reference(*p.section, defs);
+      if (p.section != nullptr) schema = reference(*p.section, defs, form);
       else schema["type"] = "object";
       break;
     case ValueType::objects:
-      schema = {{"type", "array"}, {"items", p.section != nullptr ? reference(*p.section, defs) : json{{"type", "object"}}}};
+      schema = {{"type", "array"}, {"items", p.section != nullptr ? reference(*p.section, defs, form) : json{{"type", "object"}}}};
       break;
     case ValueType::any: break;
   }
   schema["description"] = description(p);
   if (p.presence == Presence::defaulted) schema["default"] = p.default_value;
   if (!p.unit.empty()) schema["x-unit"] = p.unit;
+  if (p.presence != Presence::required) allow_null(schema);
   return schema;
 }
 
@@ -90,12 +121,10 @@ json required_keys(const SectionDeclaration& section) {
   return required;
 }
 
-}  // namespace
-
-json section_schema(const SectionDeclaration& section, json& defs) {
+json section_body(const SectionDeclaration& section, json& defs, Form form) {
   json schema{{"type", "object"}, {"description", section.doc}};
   json properties = json::object();
-  for (const auto& p : section.parameters) properties[p.key] = value_schema(p, defs);
+  for (const auto& p : section.parameters) properties[p.key] = value_schema(p, defs, form);
   // Any object of a scenario file may include another file (the coupler's
   // scenario_includes), whose keys it extends.
   properties["include"] = {{"type", "string"},
@@ -105,18 +134,13 @@ json section_schema(const SectionDeclaration& section, json& defs) {
   schema["patternProperties"] = {{"^_", json::object()}, {"^comment$", json::object()}};
 
   json conditions = json::array();
-  const json required = required_keys(section);
-  if (!required.empty()) {
-    // An object that includes a file may take its required keys from it.
-    conditions.push_back({{"if", {{"required", {"include"}}}}, {"else", {{"required", required}}}});
-  }
+  if (const json required = required_keys(section); form == Form::complete && !required.empty()) schema["required"] = required;
   for (const auto& variant : section.variants) {
     json then{{"properties", json::object()}};
     if (variant.keys != nullptr) {
-      for (const auto& p : variant.keys->parameters) then["properties"][p.key] = value_schema(p, defs);
-      const json variant_required = required_keys(*variant.keys);
-      if (!variant_required.empty())
-        then["if"] = {{"required", {"include"}}}, then["else"] = {{"required", variant_required}};
+      for (const auto& p : variant.keys->parameters) then["properties"][p.key] = value_schema(p, defs, form);
+      if (const json variant_required = required_keys(*variant.keys); form == Form::complete && !variant_required.empty())
+        then["required"] = variant_required;
     }
     const ParameterDeclaration* selector = section.find(section.selector);
     json condition{{"properties", {{section.selector, {{"const", variant.value}}}}}};
@@ -132,7 +156,7 @@ json section_schema(const SectionDeclaration& section, json& defs) {
     for (const auto& variant : section.variants)
       if (variant.keys != nullptr)
         for (const auto& p : variant.keys->parameters) {
-          json property = value_schema(p, defs);
+          json property = value_schema(p, defs, form);
           property["description"] = "(" + variant.value + ") " + property["description"].get<std::string>();
           if (!any_variant["properties"].contains(p.key)) any_variant["properties"][p.key] = property;
         }
@@ -143,6 +167,19 @@ json section_schema(const SectionDeclaration& section, json& defs) {
   // would not see; unevaluatedProperties (2020-12) does.
   schema["unevaluatedProperties"] = false;
   return schema;
+}
+
+}  // namespace
+
+std::string patch_def_name(const SectionDeclaration& section) { return section.name + ".patch"; }
+
+json section_schema(const SectionDeclaration& section, json& defs) {
+  // The if/then/else (not oneOf) reports an error inside either form at its own key path.
+  return {{"type", "object"},
+          {"description", section.doc},
+          {"if", {{"required", {"include"}}}},
+          {"then", reference(section, defs, Form::patch)},
+          {"else", section_body(section, defs, Form::complete)}};
 }
 
 json schema_document(const SectionDeclaration& root, const std::string& id, const std::string& title) {

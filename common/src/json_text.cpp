@@ -4,6 +4,8 @@
 #include <set>
 #include <vector>
 
+#include "dfc/common/echo.hpp"
+
 namespace dfc {
 
 namespace {
@@ -36,7 +38,7 @@ class ParsePosition {
     std::string text;
     for (const Level& level : levels_) {
       if (!level.is_object) text += "[" + std::to_string(level.index) + "]";
-      else if (!level.key.empty()) text += (text.empty() ? "" : ".") + level.key;
+      else if (!level.key.empty()) text += (text.empty() ? "" : ".") + echoed(level.key);
     }
     return text;
   }

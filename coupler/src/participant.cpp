@@ -1,6 +1,7 @@
 #include "dfc/coupler/participant.hpp"
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/echo.hpp"
 #include "dfc/protocol/transport.hpp"
 
 namespace dfc::coupler {
@@ -26,7 +27,7 @@ Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, c
     endpoint = process_->wait_for_endpoint(startup_timeout, spec.slot + " server '" + spec.program + "'",
                                            [this] { stop_->check("the start of server " + label()); });
     if (const auto problem = protocol::endpoint_problem(endpoint))
-      throw ConfigError(spec.key_path() + ".program", "'" + spec.program + "' printed the line 'DFC-LISTENING " + endpoint + "', which is no endpoint: " +
+      throw ConfigError(spec.key_path() + ".program", "'" + spec.program + "' printed the line 'DFC-LISTENING " + echoed(endpoint, kMaxEchoedPathBytes) + "', which is no endpoint: " +
                                                           *problem + "; a protocol v1 server prints the endpoint it bound (SPEC.md §2)");
   }
   client_ = std::make_unique<protocol::SolverClient>(context, endpoint, label());

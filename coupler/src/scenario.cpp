@@ -10,6 +10,7 @@
 
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/durations.hpp"
+#include "dfc/common/echo.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
 #include "dfc/common/sections/scenario_sections.hpp"
@@ -123,7 +124,7 @@ std::optional<std::string> output_directory_problem(const fs::path& directory, c
   const fs::path working = fs::weakly_canonical(fs::current_path(), ec);
   // The working folder or one above it: results.h5, scenario.json and logs/
   // would land among (and overwrite) the user's own files.
-  const std::string named = directory.string();  // an lvalue: "'" + a temporary trips GCC 12's -Wrestrict
+  const std::string named = echoed(directory.string(), kMaxEchoedPathBytes);  // an lvalue: "'" + a temporary trips GCC 12's -Wrestrict
   if (std::mismatch(target.begin(), target.end(), working.begin(), working.end()).first == target.end())
     return "'" + named + "' is the working folder or one above it; the results (scenario.json, results.h5, logs/) would overwrite files "
            "there: name a folder of their own, e.g. results/<name>";
@@ -153,7 +154,7 @@ std::vector<Scenario> load_scenarios(const fs::path& path, const fs::path& bin_d
       scenarios.back().variant_label = variant.label;
     } catch (const ConfigError& e) {
       if (variant.label.empty()) throw;
-      throw ConfigError(e.key_path(), "(variant \"" + variant.label + "\") " + e.reason());
+      throw ConfigError(e.key_path(), "(variant \"" + echoed(variant.label) + "\") " + e.reason());
     }
   }
   return scenarios;

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "dfc/common/echo.hpp"
 #include "dfc/common/errors.hpp"
 
 namespace dfc::coupler {
@@ -33,9 +34,9 @@ nlohmann::json resolve(const nlohmann::json& value, const fs::path& directory, c
     try {
       included = load(file);
     } catch (const UserError& e) {
-      throw ConfigError(key, std::string("cannot use '") + file.string() + "': " + e.what());
+      throw ConfigError(key, "cannot use '" + echoed(file.string(), kMaxEchoedPathBytes) + "': " + e.what());
     }
-    if (!included.is_object()) throw ConfigError(key, "'" + file.string() + "' holds no JSON object; an included file is an object of keys");
+    if (!included.is_object()) throw ConfigError(key, "'" + echoed(file.string(), kMaxEchoedPathBytes) + "' holds no JSON object; an included file is an object of keys");
     out = resolve(included, file.parent_path(), load, path, depth + 1);
   }
   for (const auto& [name, child] : value.items()) {

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <set>
 
+#include "dfc/common/echo.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/coupler/scenario.hpp"
 
@@ -34,11 +35,11 @@ std::vector<ScenarioVariant> expand_variants(const nlohmann::json& document) {
     if (!entry.is_object()) throw ConfigError(path, "expected an object {\"label\": ..., \"patch\": {...}}");
     for (const auto& item : entry.items())
       if (item.key() != "label" && item.key() != "patch" && item.key() != "comment")
-        throw ConfigError(path + "." + item.key(), "unknown key; a variant has \"label\" and \"patch\"");
+        throw ConfigError(path + "." + echoed(item.key()), "unknown key; a variant has \"label\" and \"patch\"");
     if (!entry.contains("label") || !entry.at("label").is_string() || !valid_label(entry.at("label").get<std::string>()))
       throw ConfigError(path + ".label", "expected a name of letters, digits, '_', '-' or '.', not '.' or '..' (it names the results folder)");
     const std::string label = entry.at("label").get<std::string>();
-    if (!labels.insert(label).second) throw ConfigError(path + ".label", "another variant is already labelled \"" + label + "\"");
+    if (!labels.insert(label).second) throw ConfigError(path + ".label", "another variant is already labelled \"" + echoed(label) + "\"");
     const nlohmann::json patch = entry.value("patch", nlohmann::json::object());
     if (!patch.is_object()) throw ConfigError(path + ".patch", "expected an object (a JSON Merge Patch of the scenario)");
     if (patch.contains("variants")) throw ConfigError(path + ".patch.variants", "a variant cannot have variants of its own");

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "dfc/common/echo.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -62,7 +63,8 @@ Message Connection::request(Message request, std::chrono::milliseconds deadline)
   const std::string type = request.type;
   Message reply = request_raw(std::move(request), deadline);
   if (reply.type == type::error)
-    throw RemoteError(reply.body.value("code", "?"), reply.body.value("message", "(no message)"), reply.body.value("key", ""));
+    throw RemoteError(echoed(reply.body.value("code", "?")), echoed(reply.body.value("message", "(no message)"), kMaxEchoedMessageBytes),
+                      echoed(reply.body.value("key", ""), kMaxEchoedPathBytes));
   return reply;
 }
 
@@ -86,7 +88,7 @@ SolverClient::Hello SolverClient::hello(const std::string& client_name, std::chr
   request.type = type::hello;
   request.body = {{"client", {{"name", client_name}, {"version", std::string(project_version())}}}};
   const Message reply = connection_.request(std::move(request), deadline);
-  if (reply.type != type::hello_ok) throw RemoteError("BAD_MESSAGE", shape_mismatch(connection_.label(), "'" + reply.type + "' to hello"), "");
+  if (reply.type != type::hello_ok) throw RemoteError("BAD_MESSAGE", shape_mismatch(connection_.label(), "'" + echoed(reply.type) + "' to hello"), "");
   Hello hello;
   const auto& body = reply.body;
   try {
@@ -174,7 +176,7 @@ std::int64_t SolverClient::checkpoint(const std::string& path, std::chrono::mill
   request.body = {{"path", path}};
   const Message reply = connection_.request(std::move(request), deadline);
   if (reply.type != type::checkpointed || !reply.step)
-    throw RemoteError("BAD_MESSAGE", connection_.label() + " answered checkpoint with '" + reply.type + "' and no step", "");
+    throw RemoteError("BAD_MESSAGE", connection_.label() + " answered checkpoint with '" + echoed(reply.type) + "' and no step", "");
   return *reply.step;
 }
 
@@ -184,7 +186,7 @@ std::int64_t SolverClient::restore(const std::string& path, std::chrono::millise
   request.body = {{"path", path}};
   const Message reply = connection_.request(std::move(request), deadline);
   if (reply.type != type::restored || !reply.step)
-    throw RemoteError("BAD_MESSAGE", connection_.label() + " answered restore with '" + reply.type + "' and no step", "");
+    throw RemoteError("BAD_MESSAGE", connection_.label() + " answered restore with '" + echoed(reply.type) + "' and no step", "");
   return *reply.step;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/echo.hpp"
 #include "dfc/common/json_text.hpp"
 #include "dfc/common/state_archive.hpp"
 #include "dfc/common/unstable_step_error.hpp"
@@ -74,7 +75,7 @@ void ServerSession::require_state(const Message& request, std::initializer_list<
   if (state_ == SessionState::fresh) hint = "; send hello first";
   else if (state_ == SessionState::greeted) hint = "; send configure first";
   else if (state_ == SessionState::failed) hint = "; the solver failed, only query, snapshot, ping and shutdown are allowed";
-  throw ProtocolError(ErrorCode::out_of_order, "'" + request.type + "' is allowed when the server is " + allowed_list(allowed) +
+  throw ProtocolError(ErrorCode::out_of_order, "'" + echoed(request.type) + "' is allowed when the server is " + allowed_list(allowed) +
                                                    ", but it is " + std::string(session_state_name(state_)) + hint);
 }
 
@@ -128,7 +129,7 @@ Message ServerSession::dispatch(const Message& request) {
     state_ = SessionState::closed;
     return reply_to(request, type::bye);
   }
-  throw ProtocolError(ErrorCode::unknown_type, "unknown message type '" + request.type + "' (protocol " + version_string() + ")");
+  throw ProtocolError(ErrorCode::unknown_type, "unknown message type '" + echoed(request.type) + "' (protocol " + version_string() + ")");
 }
 
 Message ServerSession::on_hello(const Message& request) {
@@ -239,10 +240,10 @@ Message ServerSession::on_snapshot(const Message& request) {
 std::string ServerSession::checkpoint_path(const Message& request) const {
   const auto& capabilities = backend_.identity().capabilities;
   if (std::find(capabilities.begin(), capabilities.end(), capability::checkpoint) == capabilities.end())
-    throw ProtocolError(ErrorCode::unsupported, "'" + request.type + "' needs capability 'checkpoint', which this server lacks");
+    throw ProtocolError(ErrorCode::unsupported, "'" + echoed(request.type) + "' needs capability 'checkpoint', which this server lacks");
   const auto path = request.body.find("path");
   if (path == request.body.end() || !path->is_string() || path->get_ref<const std::string&>().empty())
-    throw ProtocolError(ErrorCode::bad_message, "'" + request.type + "' needs body.path: the checkpoint file's path, a non-empty string");
+    throw ProtocolError(ErrorCode::bad_message, "'" + echoed(request.type) + "' needs body.path: the checkpoint file's path, a non-empty string");
   return path->get<std::string>();
 }
 

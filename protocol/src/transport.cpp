@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "dfc/common/echo.hpp"
+
 namespace dfc::protocol {
 
 void configure_socket(zmq::socket_t& socket, const Limits& limits) {
@@ -15,7 +17,7 @@ void configure_socket(zmq::socket_t& socket, const Limits& limits) {
 
 std::optional<std::string> endpoint_problem(std::string_view endpoint) {
   const std::string expected = "expected a ZeroMQ endpoint \"tcp://HOST:PORT\" (e.g. \"tcp://127.0.0.1:5555\") or \"ipc://PATH\", got \"" +
-                               std::string(endpoint) + "\"";
+                               echoed(endpoint, kMaxEchoedPathBytes) + "\"";
   if (endpoint.starts_with("ipc://")) {
     if (endpoint.size() == 6) return expected;
     return std::nullopt;

@@ -102,6 +102,15 @@ TEST_F(ServerSessionTest, UnknownTypeIsUnknownTypeInAnyState) {
   EXPECT_EQ(session.state(), SessionState::configured);
 }
 
+TEST_F(ServerSessionTest, AnUnknownType200kBLongIsEchoedCutWithItsLength) {
+  // Issue 42: the reply's message quotes the type, but not all of it.
+  const Message reply = send(std::string(200'000, 't'));
+  EXPECT_EQ(error_code(reply), "UNKNOWN_TYPE");
+  const std::string message = reply.body.value("message", "");
+  EXPECT_LT(message.size(), 300u) << message.substr(0, 300);
+  EXPECT_NE(message.find("(200000 bytes)"), std::string::npos) << message.substr(0, 300);
+}
+
 TEST_F(ServerSessionTest, GreetedRefusesAdvanceQueryAndInterface) {
   ASSERT_EQ(hello().type, type::hello_ok);
   for (const auto t : {type::get_interface, type::set_interface, type::query, type::snapshot}) EXPECT_EQ(error_code(send(t)), "OUT_OF_ORDER") << t;

@@ -6,7 +6,9 @@ Usage: test_scenario_schema.py COUPLER REPOSITORY_ROOT WORK_DIR
    the declarations (regenerate: ./vc schema), and a valid draft 2020-12 schema.
 2. Every shipped scenario (scenarios/, tests/e2e/scenarios/), as the coupler
    reads it (`coupler expand`: includes resolved, one document per variant),
-   validates with an independent validator (Debian's python3-jsonschema).
+   validates with an independent validator (Debian's python3-jsonschema);
+   so do the same files as written (as an editor checks them) and the
+   scenarios in the code blocks of README.md and docs/*.md.
 3. Each server section of each shipped scenario passes the server's own
    parser (`dem_server --check-config`, `fdm_server --check-config`): a parser
    that reads a key its declaration lacks fails there (std::logic_error, exit 1).
@@ -97,6 +99,54 @@ for path in files:
         if where := deepest_error_paths(document):
             fail(f"{os.path.relpath(path, ROOT)} ({document['name']}): schema error at {where}")
 print(f"{len(documents)} scenario documents from {len(files)} files validated")
+
+# 2b. The same files as written, as an editor sees them: an object that
+# includes a file may leave its required keys to it, and null removes a key
+# of the included file (JSON Merge Patch), e.g. "variants": null.
+for path in files:
+    with open(path) as f:
+        document = json.load(f)
+    if where := deepest_error_paths(document):
+        fail(f"{os.path.relpath(path, ROOT)} as written: schema error at {where}")
+print(f"{len(files)} scenario files validated as written")
+
+
+def documented_scenarios():
+    """(where, text) of each scenario in a code block of README.md and docs/*.md.
+
+    A block is a scenario when its text is one JSON object (it starts with '{')
+    and it is fenced as json, or when it parses as an object with a key only a
+    scenario's top level has ("schema_version", "participants", "include",
+    "variants"), whatever its fence. Fragments of a section ("walls": [...])
+    are not objects; an outline with elided sections is fenced as text, not
+    json, since it is not JSON."""
+    fence = re.compile(r"^([ \t]*)```(\w*)[ \t]*\n(.*?)^\1```", re.S | re.M)
+    for page in [os.path.join(ROOT, "README.md")] + sorted(glob.glob(os.path.join(ROOT, "docs", "*.md"))):
+        with open(page) as f:
+            text = f.read()
+        for block in fence.finditer(text):
+            language, body = block.group(2), block.group(3)
+            where = f"{os.path.relpath(page, ROOT)}:{text.count(chr(10), 0, block.start()) + 1}"
+            try:
+                value = json.loads(body)
+            except ValueError:
+                value = None
+            if language == "json" and body.lstrip().startswith("{"):
+                yield where, value
+            elif isinstance(value, dict) and value.keys() & {"schema_version", "participants", "include", "variants"}:
+                yield where, value
+
+
+documented = 0
+for where, document in documented_scenarios():
+    documented += 1
+    if document is None:
+        fail(f"{where}: a json block that opens an object is not JSON (fence an outline as text)")
+    elif paths := deepest_error_paths(document):
+        fail(f"{where}: schema error at {paths}")
+if documented < 1:
+    fail("no scenario found in the code blocks of README.md and docs/")
+print(f"{documented} scenarios in the docs' code blocks validated as written")
 
 # 3. Declared server sections pass their parsers (`<server> --check-config`: the
 # parser alone, without building the model).

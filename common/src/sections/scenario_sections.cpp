@@ -142,23 +142,26 @@ nlohmann::json scenario_schema() {
   json schema = schema_document(scenario(), "https://github.com/dfc-project/dfc/scenario.schema.json", "dfc scenario");
   json& defs = schema["$defs"];
   // Each server's section under participants.<slot>.config, chosen by the
-  // program's name. The coupler sets the servers' gravity itself, so a
-  // config must not.
-  json server_sections = json::array();
-  const auto add_server = [&](const std::string& program, const SectionDeclaration& section) {
-    json ref = section_schema(section, defs);
-    defs[section.name] = ref;
-    server_sections.push_back({{"if", {{"required", {"program"}}, {"properties", {{"program", {{"pattern", "(^|/)" + program + "$"}}}}}}},
-                               {"then", {{"properties", {{"config", {{"$ref", "#/$defs/" + section.name}}}}}}}});
+  // program's name: complete in a complete participant, a patch in one that
+  // includes a file or lies in one that does (json_schema.hpp). The coupler
+  // sets the servers' gravity itself, so a config must not.
+  const auto add_servers = [&](json& participant, bool patch) {
+    json server_sections = json::array();
+    for (const auto& [program, section] : {std::pair{"fdm_server", &fdm_server()}, std::pair{"dem_server", &dem_server()}}) {
+      defs[section->name] = section_schema(*section, defs);
+      const std::string name = patch ? patch_def_name(*section) : section->name;
+      server_sections.push_back({{"if", {{"required", {"program"}}, {"properties", {{"program", {{"pattern", std::string("(^|/)") + program + "$"}}}}}}},
+                                 {"then", {{"properties", {{"config", {{"$ref", "#/$defs/" + name}}}}}}}});
+    }
+    participant["allOf"] = server_sections;
+    participant["properties"]["config"]["properties"] = {{"gravity_m_s2", false}};
   };
-  add_server("fdm_server", fdm_server());
-  add_server("dem_server", dem_server());
-  json& participant = defs[scenario_participant().name];
-  participant["allOf"] = server_sections;
-  participant["properties"]["config"]["properties"] = {{"gravity_m_s2", false}};
+  add_servers(defs[scenario_participant().name]["else"], false);
+  add_servers(defs[patch_def_name(scenario_participant())], true);
   // The format version this coupler reads (the declaration bounds it below only,
   // so that the coupler's own message names the version it reads).
-  schema["properties"]["schema_version"]["const"] = kScenarioSchemaVersion;
+  schema["else"]["properties"]["schema_version"]["const"] = kScenarioSchemaVersion;
+  defs[patch_def_name(scenario())]["properties"]["schema_version"]["const"] = kScenarioSchemaVersion;
   return schema;
 }
 

@@ -11,8 +11,14 @@
 namespace dfc {
 
 /// Schema of one section; nested sections are placed in `defs` (by name) and
-/// referenced with "$ref": "#/$defs/<name>".
+/// referenced with "$ref": "#/$defs/<name>". An object with "include" is
+/// checked against the section's patch form (defs[patch_def_name(section)]),
+/// any other against the complete one ("else").
 [[nodiscard]] nlohmann::json section_schema(const SectionDeclaration& section, nlohmann::json& defs);
+
+/// The name in `defs` of the section's patch form: the schema of the section
+/// in an object that includes a file (none of its keys required, at any depth).
+[[nodiscard]] std::string patch_def_name(const SectionDeclaration& section);
 
 /// A complete schema document whose root is `root`, with $schema, $id, title and $defs.
 [[nodiscard]] nlohmann::json schema_document(const SectionDeclaration& root, const std::string& id, const std::string& title);
