@@ -113,16 +113,26 @@ TEST(DeclaredReader, HelpListsEveryKeyWithUnitBoundsAndDefault) {
 }
 
 TEST(DeclaredSchema, CarriesTypesBoundsDefaultsAndTheVariantsKeys) {
-  const json schema = schema_document(section(), "test", "test");
-  EXPECT_EQ(schema["$schema"], "https://json-schema.org/draft/2020-12/schema");
+  const json document = schema_document(section(), "test", "test");
+  EXPECT_EQ(document["$schema"], "https://json-schema.org/draft/2020-12/schema");
+  // A document that includes a file is a patch of it (no key required, at any
+  // depth); any other is the complete section.
+  EXPECT_EQ(document["if"]["required"], json({"include"}));
+  EXPECT_EQ(document["then"]["$ref"], "#/$defs/test.patch");
+  EXPECT_FALSE(document["$defs"]["test.patch"].contains("required"));
+  const json& schema = document["else"];
   const json& radius = schema["properties"]["radius_m"];
   EXPECT_EQ(radius["type"], "number");
   EXPECT_EQ(radius["exclusiveMinimum"], 0.0);
   EXPECT_EQ(radius["x-unit"], "m");
   EXPECT_EQ(schema["properties"]["friction"]["default"], 0.5);
   EXPECT_EQ(schema["properties"]["friction"]["maximum"], 10.0);
-  EXPECT_EQ(schema["properties"]["count"]["type"], "integer");
-  EXPECT_EQ(schema["properties"]["type"]["enum"], json({"box", "ball"}));
+  EXPECT_EQ(schema["properties"]["count"]["type"], json({"integer", "null"}));
+  // A key that may be absent may be null (a JSON Merge Patch removes it that
+  // way, e.g. "variants": null); a required key may not.
+  EXPECT_EQ(schema["properties"]["type"]["enum"], json({"box", "ball", nullptr}));
+  EXPECT_EQ(schema["properties"]["friction"]["type"], json({"number", "null"}));
+  EXPECT_EQ(schema["required"], json({"radius_m"}));
   EXPECT_EQ(schema["unevaluatedProperties"], false);
   // The box variant adds size_m, required, when type is "box".
   bool box_found = false;
@@ -130,7 +140,7 @@ TEST(DeclaredSchema, CarriesTypesBoundsDefaultsAndTheVariantsKeys) {
     if (condition.contains("if") && condition["if"].contains("properties") && condition["if"]["properties"]["type"]["const"] == "box") {
       box_found = true;
       EXPECT_EQ(condition["then"]["properties"]["size_m"]["minItems"], 3);
-      EXPECT_EQ(condition["then"]["else"]["required"], json({"size_m"}));
+      EXPECT_EQ(condition["then"]["required"], json({"size_m"}));
     }
   EXPECT_TRUE(box_found);
 }
