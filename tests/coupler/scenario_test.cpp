@@ -1,4 +1,4 @@
-// Scenario reading (README, "Scenarios"): defaults, gravity injection, program lookup,
+// Scenario reading (docs/running.md, "Scenarios"): defaults, gravity injection, program lookup,
 // and errors that name the key path.
 #include <gtest/gtest.h>
 

@@ -123,7 +123,7 @@ const SectionDeclaration& scenario_variant() {
 const SectionDeclaration& scenario() {
   static const SectionDeclaration s{
       .name = "scenario",
-      .doc = "a virtual-centrifuge scenario (README.md, Scenarios)",
+      .doc = "a virtual-centrifuge scenario (docs/running.md, Scenarios)",
       .parameters = {P::integer("schema_version", "version of this file format (this coupler reads 1)").integer_within(1),
                      P::string("name", "the run's name; results go to results/<name> unless output.directory says otherwise"),
                      P::string("description", "free text").fallback(""),
