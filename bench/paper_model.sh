@@ -67,7 +67,8 @@ section["particles"]["region"].update({"radius_m": 0.0105, "z_min_m": 0.111})
 json.dump(section, open(f"{work}/medium.json", "w"))
 EOF
 
-field() { sed -nE "s/.*$1.*/\\1/p" | head -n 1; }
+# "#" delimits: the patterns hold "/" (particle-steps/s).
+field() { sed -nE "s#.*$1.*#\\1#p" | head -n 1; }
 declare -A rate digest
 report=$WORK/report.txt
 : >"$report"

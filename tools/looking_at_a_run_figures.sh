@@ -3,7 +3,8 @@
 #   tools/looking_at_a_run_figures.sh BUILD_DIR
 # runs the bonded pile of tests/e2e/scenarios/pile_bonded_restart.json for 120
 # exchanges with a snapshot every 40 (what the test python.run_view runs; a
-# few seconds), draws its last snapshot with tools/render.py into
+# few seconds) and the demo's open pile (scenarios/demo_open_pile.json,
+# about 20 s), draws their last snapshots with tools/render.py into
 # docs/figures/looking_at_a_run/ and prints the bytes per particle per
 # snapshot (tools/snapshot_bytes.py).
 set -euo pipefail
@@ -25,4 +26,9 @@ mkdir -p "$FIGURES"
 "$PYTHON" "$ROOT/tools/render.py" "$WORK/run" --snapshot -1 --renderer matplotlib --dpi 110 --out "$WORK/pictures"
 cp "$WORK"/pictures/snapshot_*.png "$FIGURES/pile_bonded_section.png"
 echo "wrote $FIGURES/pile_bonded_section.png"
+# The demo's open pile (./vc demo's scenario, about 20 s): its last snapshot.
+"$BUILD/bin/coupler" run "$ROOT/scenarios/demo_open_pile.json" --out "$WORK/demo" --no-progress
+"$PYTHON" "$ROOT/tools/render.py" "$WORK/demo" --snapshot -1 --renderer matplotlib --dpi 110 --out "$WORK/demo_pictures"
+cp "$WORK"/demo_pictures/snapshot_*.png "$FIGURES/demo_open_pile_section.png"
+echo "wrote $FIGURES/demo_open_pile_section.png"
 "$PYTHON" "$ROOT/tools/snapshot_bytes.py" "$WORK/run"
