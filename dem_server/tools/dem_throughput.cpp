@@ -58,6 +58,10 @@
 #include <string>
 #include <vector>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 #include "dfc/common/command_line.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/dem/measurements.hpp"
@@ -301,6 +305,21 @@ double status_kilobytes(const std::string& field) {
   return 0.0;
 }
 
+/// Where the resident memory is: bytes the program holds in allocations, and
+/// bytes the allocator keeps freed but unreturned (glibc's mallinfo2; "" on
+/// other C libraries). Tells a model's own arrays from what generation left.
+std::string allocator_report() {
+#if defined(__GLIBC__)
+  const struct mallinfo2 heap = mallinfo2();
+  std::ostringstream out;
+  out << "; allocations " << double(heap.uordblks + heap.hblkhd) / 1e9 << " GB, freed and kept by the allocator " << double(heap.fordblks) / 1e9
+      << " GB";
+  return out.str();
+#else
+  return "";
+#endif
+}
+
 /// Pair candidates and bonds that hold (intact or damaged), each per particle.
 std::string pairs_and_bonds(const Simulation& sim) {
   const double n = double(sim.particles().size());
@@ -379,6 +398,7 @@ void run_section_benchmark(const Options& o) {
     const double build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - built).count();
     sim.run(o.warmup, model.dt);
     const double rss = status_kilobytes("VmRSS") * 1024.0;
+    const std::string heap = allocator_report();
     const std::string first = pairs_and_bonds(sim);
     const std::size_t rebuilds = sim.rebuild_count();
     profile.enable();
@@ -397,7 +417,7 @@ void run_section_benchmark(const Options& o) {
     std::cout << "threads " << sim.threads() << ": " << n * o.steps / seconds << " particle-steps/s (" << seconds << " s for " << o.steps
               << " steps of " << sim.particles().size() << " particles, dt " << model.dt << " s, " << sim.rebuild_count() - rebuilds
               << " rebuilds; first step " << first << ", last " << pairs_and_bonds(sim) << "; resident memory " << rss / n
-              << " bytes per particle (" << rss / 1e9 << " GB, peak " << status_kilobytes("VmHWM") * 1024.0 / 1e9 << " GB); built in "
+              << " bytes per particle (" << rss / 1e9 << " GB, peak " << status_kilobytes("VmHWM") * 1024.0 / 1e9 << " GB" << heap << "); built in "
               << build_seconds << " s; serial work of a coupled run outside the step: " << serial_monitor_cost(sim);
     if (o.digest) std::cout << ", state digest " << std::hex << state_digest(sim) << std::dec;
     std::cout << ")" << std::endl;

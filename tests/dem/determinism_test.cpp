@@ -52,8 +52,8 @@ Outcome run(int threads) {
   return {p.id, p.position, p.velocity, p.angular_velocity, impulse, sim.rebuild_count()};
 }
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T, class Allocator>
+bool same_bits(const std::vector<T, Allocator>& a, const std::vector<T, Allocator>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 

@@ -109,7 +109,7 @@ TEST(ContactHistory, ShearHistorySurvivesANeighbourListRebuild) {
   const double dt = 1e-7;
   for (int s = 0; s < 10; ++s) sim.step(dt);
   ASSERT_EQ(sim.pair_contacts().size(), 1u);
-  const std::vector<double> before = sim.pair_contacts().history;
+  const auto before = sim.pair_contacts().history;
   ASSERT_GT(std::abs(before[0]), 0.0);
 
   // Stop the motion (any edit of the particles forces a rebuild) and take one step:
@@ -120,7 +120,7 @@ TEST(ContactHistory, ShearHistorySurvivesANeighbourListRebuild) {
   for (auto& w : p.angular_velocity) w = {};
   sim.step(dt);
   EXPECT_EQ(sim.rebuild_count(), rebuilds + 1);
-  const std::vector<double> after = sim.pair_contacts().history;
+  const auto after = sim.pair_contacts().history;
   ASSERT_EQ(after.size(), before.size());
   // Equal up to the rotation with the contact plane, which turned during the
   // last move by ~ v dt / (2 r) = 5e-8 rad: 1e-6 of |F_s|. A lost history would be 0.

@@ -126,7 +126,7 @@ PairContacts expect_loop_equals_law_alone(const Law& law, const Prepare& prepare
   std::mt19937_64 rng(20261123);
   ParticleStore p = jittered_chain(rng, odd_offset);
   PairContacts pairs = chain_pairs(law, p, rng, prepare);
-  std::vector<double> expected_history = pairs.history;
+  UninitialisedDoubles expected_history = pairs.history;
   const Incidence incidence = build_incidence(p.size(), pairs, {}, {}, 1);
   ContactOutputs out;
   out.resize(pairs.size(), Law::has_couple, Space::periodic ? pairs.size() : 0);

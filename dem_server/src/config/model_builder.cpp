@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <type_traits>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/model_layout.hpp"
@@ -103,12 +104,16 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   if (c.pile)
     model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) { return inside_pile({p.position[i], p.radius[i]}, c.pile->geometry); });
   for (const auto& wall : sim.walls()) model.removed_particles += fit_to_wall(sim, wall, config, *model.generation);
-  ReplicatedBody& held = model.generation->body;  // the simulation holds the body now
-  held.id = {};
-  held.spheres = {};
-  held.material = {};
-  held.pairs = {};
-  held.rows = {};
+  // The simulation holds the body now: its arrays are released, not merely
+  // emptied (`v = {}` assigns an empty list and keeps the capacity: the paper
+  // model then kept 0.45 GB of rows for the whole run).
+  ReplicatedBody& held = model.generation->body;
+  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(held.id);
+  release(held.spheres);
+  release(held.material);
+  release(held.pairs);
+  release(held.rows);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 namespace dfc::dem {
 
 void Simulation::compute_pair_constants() {
-  std::visit([&](const auto& table) { dfc::dem::compute_pair_constants(pair_laws(table, pairs_), particles_, pairs_); }, materials_.pair_laws());
+  std::visit([&](const auto& table) { dfc::dem::compute_pair_constants(pair_laws(table, pairs_), particles_, pairs_, threads_); }, materials_.pair_laws());
 }
 
 bool Simulation::compute_contact_forces(double dt, ContactRecord record) {

@@ -100,11 +100,18 @@ std::vector<HistoryArchive::Key> HistoryArchive::keys_with_nonzero(std::size_t c
   return out;
 }
 
+std::vector<std::uint32_t> inverse_order(std::span<const std::uint32_t> new_to_old, int threads) {
+  std::vector<std::uint32_t> old_to_new(new_to_old.size());
+  const auto n = std::int64_t(new_to_old.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t s = 0; s < n; ++s) old_to_new[new_to_old[std::size_t(s)]] = std::uint32_t(s);
+  return old_to_new;
+}
+
 std::vector<std::uint32_t> match_previous_pairs(const PairContacts& before, std::span<const std::uint32_t> new_to_old,
                                                 const std::vector<std::uint32_t>& first, const std::vector<std::uint32_t>& second, int threads) {
   const std::size_t n = new_to_old.size();
-  std::vector<std::uint32_t> old_to_new(n);
-  for (std::size_t s = 0; s < n; ++s) old_to_new[new_to_old[s]] = std::uint32_t(s);
+  const std::vector<std::uint32_t> old_to_new = inverse_order(new_to_old, threads);
   // The previous pairs by their first particle's new slot: (second's new slot, index).
   std::vector<std::uint32_t> start(n + 1, 0);
   for (const std::uint32_t i : before.first) ++start[old_to_new[i] + 1];
@@ -133,7 +140,9 @@ void copy_matched_rows(const PairContacts& before, const std::vector<std::uint32
 #pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
   for (std::int64_t k = 0; k < n; ++k) {
     const std::uint32_t m = match[std::size_t(k)];
-    if (m != no_previous_pair) std::copy_n(before.history.data() + std::size_t(m) * stride, stride, pairs.row(std::size_t(k)));
+    double* row = pairs.row(std::size_t(k));
+    if (m != no_previous_pair) std::copy_n(before.history.data() + std::size_t(m) * stride, stride, row);
+    else std::fill_n(row, stride, 0.0);
   }
 }
 
@@ -156,13 +165,15 @@ HistoryArchive archive_history(const WallContacts& contacts, const ParticleStore
 }
 
 void restore_history(PairContacts& pairs, const ParticleStore& particles, const HistoryArchive& archive, int threads) {
-  if (pairs.stride == 0 || archive.size() == 0) return;
+  if (pairs.stride == 0) return;
+  const bool archived = archive.size() > 0;
   const auto n = static_cast<std::int64_t>(pairs.size());
 #pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto c = std::size_t(k);
-    if (const double* row = archive.find({particles.id[pairs.first[c]], particles.id[pairs.second[c]]}))
-      std::copy(row, row + pairs.stride, pairs.row(c));
+    const double* row = archived ? archive.find({particles.id[pairs.first[c]], particles.id[pairs.second[c]]}) : nullptr;
+    if (row) std::copy(row, row + pairs.stride, pairs.row(c));
+    else std::fill_n(pairs.row(c), pairs.stride, 0.0);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/parallel.hpp"
 
 namespace dfc::dem {
 
@@ -35,24 +36,26 @@ void ParticleStore::set_radius(std::size_t slot, double r) {
 
 namespace {
 template <class T>
-void permute_field(std::vector<T>& field, std::span<const std::uint32_t> new_to_old) {
+void permute_field(std::vector<T>& field, std::span<const std::uint32_t> new_to_old, int threads) {
   std::vector<T> out(new_to_old.size());
-  for (std::size_t k = 0; k < new_to_old.size(); ++k) out[k] = field[new_to_old[k]];
+  const auto n = std::int64_t(new_to_old.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
+  for (std::int64_t k = 0; k < n; ++k) out[std::size_t(k)] = field[new_to_old[std::size_t(k)]];
   field.swap(out);
 }
 }  // namespace
 
-void ParticleStore::permute(std::span<const std::uint32_t> new_to_old) {
-  permute_field(id, new_to_old);
-  permute_field(position, new_to_old);
-  permute_field(velocity, new_to_old);
-  permute_field(angular_velocity, new_to_old);
-  permute_field(force, new_to_old);
-  permute_field(moment, new_to_old);
-  permute_field(radius, new_to_old);
-  permute_field(mass, new_to_old);
-  permute_field(inertia, new_to_old);
-  permute_field(material, new_to_old);
+void ParticleStore::permute(std::span<const std::uint32_t> new_to_old, int threads) {
+  permute_field(id, new_to_old, threads);
+  permute_field(position, new_to_old, threads);
+  permute_field(velocity, new_to_old, threads);
+  permute_field(angular_velocity, new_to_old, threads);
+  permute_field(force, new_to_old, threads);
+  permute_field(moment, new_to_old, threads);
+  permute_field(radius, new_to_old, threads);
+  permute_field(mass, new_to_old, threads);
+  permute_field(inertia, new_to_old, threads);
+  permute_field(material, new_to_old, threads);
 }
 
 void ParticleStore::retain(std::span<const std::uint32_t> kept_slots) { permute(kept_slots); }

@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/dem/fixed_order_sum.hpp"
 #include "dfc/dem/huge_pages.hpp"
 #include "dfc/dem/integrator.hpp"
 #include "dfc/dem/neighbour_search.hpp"
@@ -195,24 +196,28 @@ void Simulation::rebuild() {
   if (cell_) check_cell_width(2.0 * r_max + search);
   const CellGrid grid = cell_ ? build_cell_grid(particles_.position, 2.0 * r_max + search, *cell_, order)
                               : build_cell_grid(particles_.position, 2.0 * r_max + search, order);
-  particles_.permute(order);
+  particles_.permute(order, threads_);
 
   // 3. New candidate lists, with the archived history.
   find_pair_candidates(grid, particles_, search, threads_, pairs_.first, pairs_.second);
   // Orient every pair by id so that its history is independent of slot order.
-  for (std::size_t k = 0; k < pairs_.size(); ++k)
+  const auto searched = std::int64_t(pairs_.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if(searched >= min_parallel_items)
+  for (std::int64_t i = 0; i < searched; ++i) {
+    const auto k = std::size_t(i);
     if (particles_.id[pairs_.first[k]] > particles_.id[pairs_.second[k]]) std::swap(pairs_.first[k], pairs_.second[k]);
+  }
   pairs_.stride = settings_.particle_law.history_size();
   if (by_slot) {
     std::vector<std::uint32_t> match = match_previous_pairs(previous, order, pairs_.first, pairs_.second, threads_);
     if (settings_.particle_law.bonded()) append_unmatched_bonds(previous, order, match);
     reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
-    pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
+    pairs_.history.resize(pairs_.size() * pairs_.stride);  // uninitialised: the threads write (and first touch) every row
     copy_matched_rows(previous, match, pairs_, threads_);
   } else {
     if (settings_.particle_law.bonded()) append_persistent_pairs(*pair_archive);
     reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
-    pairs_.history.assign(pairs_.size() * pairs_.stride, 0.0);
+    pairs_.history.resize(pairs_.size() * pairs_.stride);  // uninitialised: the threads write (and first touch) every row
     restore_history(pairs_, particles_, *pair_archive, threads_);
   }
   assign_pair_laws();
@@ -249,15 +254,30 @@ void Simulation::rebuild() {
 }
 
 void Simulation::append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> new_to_old, std::vector<std::uint32_t>& match) {
-  std::vector<std::uint32_t> old_to_new(new_to_old.size());
-  for (std::size_t s = 0; s < new_to_old.size(); ++s) old_to_new[new_to_old[s]] = std::uint32_t(s);
+  const std::vector<std::uint32_t> old_to_new = inverse_order(new_to_old, threads_);
+  // On every thread: one row load per previous pair, a cache miss each in a
+  // large model. Each previous pair is matched at most once (distinct writes),
+  // and the unmatched bonds are sorted by their (unique) keys below, so the
+  // order in which the threads find them does not matter.
   std::vector<char> matched(before.size(), 0);
-  for (const std::uint32_t k : match)
-    if (k != no_previous_pair) matched[k] = 1;
+  const auto searched = std::int64_t(match.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if(searched >= min_parallel_items)
+  for (std::int64_t k = 0; k < searched; ++k)
+    if (match[std::size_t(k)] != no_previous_pair) matched[match[std::size_t(k)]] = 1;
   std::vector<std::pair<HistoryArchive::Key, std::uint32_t>> unmatched;
-  for (std::size_t k = 0; k < before.size(); ++k)
-    if (!matched[k] && before.history[k * before.stride + bond_state_column] != 0.0)
-      unmatched.push_back({{particles_.id[old_to_new[before.first[k]]], particles_.id[old_to_new[before.second[k]]]}, std::uint32_t(k)});
+  const auto previous = std::int64_t(before.size());
+#pragma omp parallel num_threads(threads_) if(previous >= min_parallel_items)
+  {
+    std::vector<std::pair<HistoryArchive::Key, std::uint32_t>> found;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < previous; ++i) {
+      const auto k = std::size_t(i);
+      if (!matched[k] && before.history[k * before.stride + bond_state_column] != 0.0)
+        found.push_back({{particles_.id[old_to_new[before.first[k]]], particles_.id[old_to_new[before.second[k]]]}, std::uint32_t(k)});
+    }
+#pragma omp critical(dfc_unmatched_bonds)
+    unmatched.insert(unmatched.end(), found.begin(), found.end());
+  }
   // In key order after the searched pairs, as append_persistent_pairs appends them.
   std::sort(unmatched.begin(), unmatched.end());
   for (const auto& [key, k] : unmatched) {
@@ -291,8 +311,12 @@ void Simulation::assign_pair_laws() {
   pairs_.law_index.clear();
   if (materials_.count() == 1) return;
   pairs_.law_index.resize(pairs_.size());
-  for (std::size_t k = 0; k < pairs_.size(); ++k)
+  const auto n = std::int64_t(pairs_.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if(n >= min_parallel_items)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto k = std::size_t(i);
     pairs_.law_index[k] = std::uint16_t(materials_.pair_index(particles_.material[pairs_.first[k]], particles_.material[pairs_.second[k]]));
+  }
 }
 
 void Simulation::install_bonds(bool across_materials_only) {
@@ -408,15 +432,11 @@ void Simulation::set_local_damping(double alpha) {
 }
 
 Vec3 Simulation::damping_force_total() const {
-  Vec3 total;  // in slot order, on one thread: the same bits whatever the thread count
-  for (const Vec3& f : damping_force_) total += f;
-  return total;
+  return fixed_order_sum<Vec3>(damping_force_.size(), threads_, [&](std::size_t i) { return damping_force_[i]; });
 }
 
 Vec3 Simulation::momentum() const {
-  Vec3 total;
-  for (std::size_t i = 0; i < particles_.size(); ++i) total += particles_.mass[i] * particles_.velocity[i];
-  return total;
+  return fixed_order_sum<Vec3>(particles_.size(), threads_, [&](std::size_t i) { return particles_.mass[i] * particles_.velocity[i]; });
 }
 
 void Simulation::run(std::int64_t steps, double dt) {

@@ -49,9 +49,9 @@ static_assert(sizeof(Wall) == sizeof(WallLayout), "a Wall field is missing from 
 struct PairContactsLayout {
   std::vector<std::uint32_t> first, second;
   std::size_t stride;
-  std::vector<double> history;
+  UninitialisedDoubles history;
   std::size_t constants_stride;
-  std::vector<double> constants;
+  UninitialisedDoubles constants;
   std::vector<std::uint16_t> law_index;
 };
 static_assert(sizeof(PairContacts) == sizeof(PairContactsLayout), "a PairContacts field is missing from Simulation::save_state");

@@ -2,20 +2,48 @@
 
 #include <limits>
 
+#include "dfc/dem/fixed_order_sum.hpp"
+
 namespace dfc::dem {
 
+namespace {
+
+struct ParticleSums {
+  double kinetic_energy = 0.0, weight = 0.0, unbalanced = 0.0;
+  ParticleSums& operator+=(const ParticleSums& o) noexcept {
+    kinetic_energy += o.kinetic_energy;
+    weight += o.weight;
+    unbalanced += o.unbalanced;
+    return *this;
+  }
+};
+
+struct ContactSums {
+  double force = 0.0;
+  std::size_t pairs = 0, walls = 0;
+  ContactSums& operator+=(const ContactSums& o) noexcept {
+    force += o.force;
+    pairs += o.pairs;
+    walls += o.walls;
+    return *this;
+  }
+};
+
+}  // namespace
+
 Measurements measure(const Simulation& sim) {
-  // Serial sums in slot / contact order: reproducible for any thread count.
+  // Sums in the fixed blocked order of fixed_order_sum: the same bits for any
+  // thread count, computed on all of them (every coupled advance measures).
   Measurements m;
   const ParticleStore& p = sim.particles();
   const double g = norm(sim.settings().gravity);
   m.particle_count = p.size();
-  double unbalanced = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    m.kinetic_energy += 0.5 * p.mass[i] * norm2(p.velocity[i]) + 0.5 * p.inertia[i] * norm2(p.angular_velocity[i]);
-    m.total_weight += p.mass[i] * g;
-    unbalanced += norm(p.force[i]);
-  }
+  const auto particles = fixed_order_sum<ParticleSums>(p.size(), sim.threads(), [&](std::size_t i) {
+    return ParticleSums{0.5 * p.mass[i] * norm2(p.velocity[i]) + 0.5 * p.inertia[i] * norm2(p.angular_velocity[i]), p.mass[i] * g, norm(p.force[i])};
+  });
+  m.kinetic_energy = particles.kinetic_energy;
+  m.total_weight = particles.weight;
+  const double unbalanced = particles.unbalanced;
   if (!sim.contact_outputs_complete()) {
     // A step in the middle of a run failed (the server then still answers
     // queries): its contact outputs are partial, so the contact measures are unknown.
@@ -23,14 +51,15 @@ Measurements measure(const Simulation& sim) {
     return m;
   }
   const ContactOutputs& out = sim.contact_outputs();
-  double contact_force_sum = 0.0;
   const std::size_t pairs = sim.pair_contacts().size();
-  for (std::size_t k = 0; k < out.force.size(); ++k) {
+  const auto contacts = fixed_order_sum<ContactSums>(out.force.size(), sim.threads(), [&](std::size_t k) {
     const double f = norm(out.force[k]);
-    if (f == 0.0) continue;
-    contact_force_sum += f;
-    ++(k < pairs ? m.pair_contact_count : m.wall_contact_count);
-  }
+    if (f == 0.0) return ContactSums{};
+    return k < pairs ? ContactSums{f, 1, 0} : ContactSums{f, 0, 1};
+  });
+  const double contact_force_sum = contacts.force;
+  m.pair_contact_count = contacts.pairs;
+  m.wall_contact_count = contacts.walls;
   if (m.particle_count > 0) m.coordination_number = double(2 * m.pair_contact_count + m.wall_contact_count) / double(m.particle_count);
   const double mean_unbalanced = m.particle_count > 0 ? unbalanced / double(m.particle_count) : 0.0;
   const double mean_applied = m.contact_count() > 0 ? contact_force_sum / double(m.contact_count())

@@ -42,8 +42,8 @@ class StateWriter {
     static_assert(stored_as_bytes<T>, "StateWriter stores only types that are their bytes");
     bytes(&v, sizeof(T));
   }
-  template <class T>
-  void vector(const std::vector<T>& v) {
+  template <class T, class Allocator>
+  void vector(const std::vector<T, Allocator>& v) {
     static_assert(stored_as_bytes<T>, "StateWriter stores only types that are their bytes");
     value(std::uint64_t(v.size()));
     if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
@@ -82,8 +82,8 @@ class StateReader {
     value(v);
     return v;
   }
-  template <class T>
-  void vector(std::vector<T>& v) {
+  template <class T, class Allocator>
+  void vector(std::vector<T, Allocator>& v) {
     static_assert(stored_as_bytes<T>, "StateReader reads only types that are their bytes");
     const auto n = value<std::uint64_t>();
     // Checked against what is left before allocating: a damaged count cannot ask for terabytes.

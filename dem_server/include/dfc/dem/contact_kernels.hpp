@@ -47,13 +47,17 @@ template <ContactLawKernel Law>
   return {table.data(), table.size() > 1 && !pairs.law_index.empty() ? pairs.law_index.data() : nullptr};
 }
 
-/// Sets pairs.constants for the current lists (laws without pair constants: none).
+/// Sets pairs.constants for the current lists (laws without pair constants:
+/// none), on `threads` threads (each row from its pair alone).
 template <ContactLawKernel Law>
-void compute_pair_constants(const PairLaws<Law>& laws, const ParticleStore& p, PairContacts& pairs) {
+void compute_pair_constants(const PairLaws<Law>& laws, const ParticleStore& p, PairContacts& pairs, int threads = 1) {
   if constexpr (HasPairConstants<Law>) {
     pairs.constants_stride = Law::constants_size;
     pairs.constants.resize(pairs.size() * Law::constants_size);
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto n = std::int64_t(pairs.size());
+#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const auto k = std::size_t(i);
       ContactKinematics kin;
       set_pair_bodies(p, pairs.first[k], pairs.second[k], kin);
       laws[k].pair_constants(kin, pairs.constants.data() + k * Law::constants_size);

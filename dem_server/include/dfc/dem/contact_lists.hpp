@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "dfc/dem/particle_store.hpp"
+#include "dfc/dem/uninitialised_allocator.hpp"
 
 namespace dfc::dem {
 
@@ -23,12 +24,15 @@ namespace dfc::dem {
 struct PairContacts {
   std::vector<std::uint32_t> first;
   std::vector<std::uint32_t> second;
-  std::size_t stride = 0;       ///< history doubles per contact (the law's history_size)
-  std::vector<double> history;  ///< size() * stride, row per contact
+  std::size_t stride = 0;  ///< history doubles per contact (the law's history_size)
+  /// size() * stride, row per contact. Left uninitialised when resized: a
+  /// rebuild writes every row in parallel (copy_matched_rows, restore_history).
+  UninitialisedDoubles history;
   /// The law's pair constants (contact_model.hpp HasPairConstants), row per
-  /// contact of constants_stride doubles; set at every list rebuild.
+  /// contact of constants_stride doubles; every row set, in parallel, at
+  /// every list rebuild (compute_pair_constants), so left uninitialised when resized.
   std::size_t constants_stride = 0;
-  std::vector<double> constants;
+  UninitialisedDoubles constants;
   /// Per contact, the index of its pair law (ParticleMaterials::pair_index of
   /// the two particles' materials); empty with a single material. Set at
   /// every list rebuild.
@@ -147,6 +151,9 @@ class HistoryArchive {
 /// match_previous_pairs: a pair of the new lists with no pair before it.
 inline constexpr std::uint32_t no_previous_pair = 0xffffffffu;
 
+/// The inverse of a re-sort (ParticleStore::permute): old slot -> new slot, on `threads` threads.
+[[nodiscard]] std::vector<std::uint32_t> inverse_order(std::span<const std::uint32_t> new_to_old, int threads);
+
 /// Carrying history across a rebuild of the same particles, re-sorted by slot
 /// (`new_to_old`, ParticleStore::permute): for each new pair (first[k],
 /// second[k], slots after the re-sort), the index of the pair of `before`
@@ -158,14 +165,16 @@ inline constexpr std::uint32_t no_previous_pair = 0xffffffffu;
                                                               const std::vector<std::uint32_t>& first, const std::vector<std::uint32_t>& second,
                                                               int threads);
 
-/// Copies row match[k] of `before` into row k of `pairs` (sized and zeroed)
-/// wherever match[k] is not no_previous_pair.
+/// Writes every row k of `pairs` (sized, its rows not yet written): row
+/// match[k] of `before`, or zeros where match[k] is no_previous_pair.
 void copy_matched_rows(const PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads);
 
 [[nodiscard]] HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles);
 [[nodiscard]] HistoryArchive archive_history(const WallContacts& contacts, const ParticleStore& particles);
-/// Copies archived rows into the matching contacts of the new lists (others stay zero).
+/// Writes every row of `pairs` (sized, its rows not yet written): the archived
+/// row of the same two particles, or zeros.
 void restore_history(PairContacts& pairs, const ParticleStore& particles, const HistoryArchive& archive, int threads);
+/// Copies archived rows into the matching contacts of the new lists (others stay zero).
 void restore_history(WallContacts& contacts, const ParticleStore& particles, const HistoryArchive& archive, int threads);
 
 }  // namespace dfc::dem

@@ -18,8 +18,8 @@ void advise_huge_pages(void* data, std::size_t bytes) noexcept;
 
 /// v.reserve(n), the new storage advised onto huge pages before anything
 /// touches it (a vector with room for n already keeps its pages).
-template <class T>
-void reserve_with_huge_pages(std::vector<T>& v, std::size_t n) {
+template <class T, class Allocator>
+void reserve_with_huge_pages(std::vector<T, Allocator>& v, std::size_t n) {
   if (v.capacity() >= n) return;
   v.reserve(n);
   advise_huge_pages(v.data(), n * sizeof(T));
