@@ -39,20 +39,43 @@ nlohmann::json resolve(const nlohmann::json& value, const fs::path& directory, c
     if (!included.is_object()) throw ConfigError(key, "'" + echoed(file.string(), kMaxEchoedPathBytes) + "' holds no JSON object; an included file is an object of keys");
     out = resolve(included, file.parent_path(), load, path, depth + 1);
   }
-  for (const auto& [name, child] : value.items()) {
-    if (name == "include") continue;
-    nlohmann::json resolved = resolve(child, directory, load, prefix + name, depth);
-    nlohmann::json patch = nlohmann::json::object();
-    patch[name] = std::move(resolved);
-    out.merge_patch(patch);
-  }
+  // The keys beside the include patch what it gives (RFC 7386): a null removes
+  // a key at any depth below. The patch keeps its nulls until it is applied:
+  // merged level by level, a null nested in an object without an include of
+  // its own (`"participants": {"dem": {"config": {"pile": null}}}`) would be
+  // applied to that empty level and lost before reaching the included key.
+  // Without an include the object is returned with its nulls, for the include
+  // of an enclosing object to apply.
+  nlohmann::json patch = nlohmann::json::object();
+  for (const auto& [name, child] : value.items())
+    if (name != "include") patch[name] = resolve(child, directory, load, prefix + name, depth);
+  if (!value.contains("include")) return patch;
+  out.merge_patch(patch);
   return out;
+}
+
+/// The nulls no include consumed say "not set": removed, as a merge onto
+/// nothing removes them.
+void drop_nulls(nlohmann::json& value) {
+  if (value.is_array())
+    for (auto& element : value) drop_nulls(element);
+  if (!value.is_object()) return;
+  for (auto it = value.begin(); it != value.end();) {
+    if (it->is_null()) {
+      it = value.erase(it);
+    } else {
+      drop_nulls(*it);
+      ++it;
+    }
+  }
 }
 
 }  // namespace
 
 nlohmann::json resolve_includes(const nlohmann::json& document, const fs::path& directory, const JsonFileLoader& load) {
-  return resolve(document, directory, load, "", 0);
+  nlohmann::json out = resolve(document, directory, load, "", 0);
+  drop_nulls(out);
+  return out;
 }
 
 }  // namespace dfc::coupler

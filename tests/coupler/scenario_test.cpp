@@ -214,6 +214,26 @@ TEST_F(ScenarioFile, AnIncludedFileIsTheBaseTheIncludingObjectPatches) {
   EXPECT_EQ(load_error(write(document.dump())), "participants.continuum.config.contact.include");
 }
 
+TEST_F(ScenarioFile, ANullNestedBelowTheIncludeRemovesTheIncludedKey) {
+  // `"participants": {"continuum": {"config": {"contact": {"friction": null}}}}`
+  // beside a top-level include removes that one included key (RFC 7386 merge
+  // patch), however deep; a null with nothing to remove is dropped. The
+  // objects between the include and the null have no include of their own:
+  // merged level by level, the null was lost before it reached the key.
+  auto base = minimal();
+  base["participants"]["continuum"]["config"] = {{"contact", {{"law", "soft_bond"}, {"friction", 0.5}}}, {"damping", 0.7}};
+  std::ofstream(folder_ / "base.json") << base.dump();
+  const nlohmann::json document = {
+      {"include", "base.json"},
+      {"participants", {{"continuum", {{"config", {{"contact", {{"friction", nullptr}}}, {"unset", {{"deeper", nullptr}}}}}}}}}};
+  const std::vector<Scenario> scenarios = load_scenarios(write(document.dump()), "");
+  ASSERT_EQ(scenarios.size(), 1u);
+  const nlohmann::json& config = scenarios[0].participants[0].config;
+  EXPECT_EQ(config.at("contact"), nlohmann::json::parse(R"({"law": "soft_bond"})"));
+  EXPECT_EQ(config.at("damping"), 0.7);
+  EXPECT_EQ(config.at("unset"), nlohmann::json::object());  // its null removed nothing and is gone
+}
+
 TEST_F(ScenarioFile, DuplicateKeysAreRefusedNamingThem) {
   std::string text = minimal().dump();
   text.insert(text.size() - 1, R"(,"name":"again")");
