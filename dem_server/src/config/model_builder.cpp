@@ -88,6 +88,20 @@ DemModel finish_model(DemModel& model, const DemConfig& c, const ModelLayout& la
   return std::move(model);
 }
 
+/// The simulation holds the generated body once its spheres are added and its
+/// rows seeded: its arrays are released, not merely emptied (`v = {}` assigns
+/// an empty list and keeps the storage: the paper model kept 0.45 GB of rows
+/// for the whole run), and before the first list build, whose peak they
+/// would raise by as much.
+void release_arrays(ReplicatedBody& body) {
+  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(body.id);
+  release(body.spheres);
+  release(body.material);
+  release(body.pairs);
+  release(body.rows);
+}
+
 /// Generator "pcrm": the generated body with its bonds' state, less the
 /// spheres a rigid wall or the pile cuts (and their pairs).
 void add_generated_body(DemModel& model, const DemConfig& c) {
@@ -99,21 +113,12 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   for (std::size_t k = 0; k < body.spheres.size(); ++k)
     sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density, body.material[k]);
   sim.seed_pair_history(body.archive(), true);
+  release_arrays(model.generation->body);  // `body` is empty from here on
   if (!c.material_laws.empty()) sim.bond_across_materials_now();  // the seams between zones (pcrm_zones.hpp)
   const ParticleStore& p = sim.particles();
   if (c.pile)
     model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) { return inside_pile({p.position[i], p.radius[i]}, c.pile->geometry); });
   for (const auto& wall : sim.walls()) model.removed_particles += fit_to_wall(sim, wall, config, *model.generation);
-  // The simulation holds the body now: its arrays are released, not merely
-  // emptied (`v = {}` assigns an empty list and keeps the capacity: the paper
-  // model then kept 0.45 GB of rows for the whole run).
-  ReplicatedBody& held = model.generation->body;
-  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
-  release(held.id);
-  release(held.spheres);
-  release(held.material);
-  release(held.pairs);
-  release(held.rows);
 }
 
 }  // namespace
