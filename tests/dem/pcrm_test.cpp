@@ -88,6 +88,29 @@ TEST(Pcrm, TheRevIsTheSameStateScaledAtAnyReferenceStress) {
   EXPECT_NEAR(double(low.steps), double(high.steps), 0.02 * double(high.steps));
 }
 
+TEST(Pcrm, ABodyReleasedIntoItsArchiveGivesTheArchiveItWouldCopy) {
+  // The model builder moves the generated rows into the simulation's seed
+  // (release_into_archive) instead of copying them (archive): the same keys
+  // and rows, all-zero rows dropped as add() drops them, and nothing left in
+  // the body.
+  const PreparedRev& r = rev();
+  const Vec3 l = r.cell.length();
+  ReplicatedBody body = replicate(r, {.shape = BedRegion::Shape::box, .min = r.cell.lo, .max = r.cell.lo + 2.0 * l}, 1.0, true);
+  // A fresh (all-zero) row among the bonds, which neither archive keeps.
+  ASSERT_GT(body.pairs.size(), 2u);
+  std::fill_n(body.rows.begin() + std::ptrdiff_t(body.stride), body.stride, 0.0);
+  const HistoryArchive copied = body.archive();
+  const HistoryArchive taken = body.release_into_archive();
+  ASSERT_EQ(taken.size(), copied.size());
+  EXPECT_EQ(taken.size() + 1, std::size_t(8 * r.bonds));  // every bond but the zeroed row
+  for (std::size_t k = 0; k < copied.size(); ++k) {
+    ASSERT_EQ(taken.key(k), copied.key(k));
+    EXPECT_TRUE(std::equal(copied.row(k), copied.row(k) + copied.stride(), taken.row(k)));
+    EXPECT_EQ(taken.find(copied.key(k)), taken.row(k));
+  }
+  EXPECT_EQ(body.id.capacity() + body.spheres.capacity() + body.material.capacity() + body.pairs.capacity() + body.rows.capacity(), 0u);
+}
+
 TEST(Pcrm, ReplicatedTwiceEachWayTheBodyHasTheRevsStressAndEquilibrium) {
   // A 2 x 2 x 2 tiling of a periodic REV is the same infinite packing: every
   // sphere has the REV's neighbours, bonds and bond loads, so the cell stress

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <sstream>
-#include <type_traits>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/model_layout.hpp"
@@ -88,20 +87,6 @@ DemModel finish_model(DemModel& model, const DemConfig& c, const ModelLayout& la
   return std::move(model);
 }
 
-/// The simulation holds the generated body once its spheres are added and its
-/// rows seeded: its arrays are released, not merely emptied (`v = {}` assigns
-/// an empty list and keeps the storage: the paper model kept 0.45 GB of rows
-/// for the whole run), and before the first list build, whose peak they
-/// would raise by as much.
-void release_arrays(ReplicatedBody& body) {
-  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
-  release(body.id);
-  release(body.spheres);
-  release(body.material);
-  release(body.pairs);
-  release(body.rows);
-}
-
 /// Generator "pcrm": the generated body with its bonds' state, less the
 /// spheres a rigid wall or the pile cuts (and their pairs).
 void add_generated_body(DemModel& model, const DemConfig& c) {
@@ -112,8 +97,8 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   const ReplicatedBody& body = model.generation->body;
   for (std::size_t k = 0; k < body.spheres.size(); ++k)
     sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density, body.material[k]);
-  sim.seed_pair_history(body.archive(), true);
-  release_arrays(model.generation->body);  // `body` is empty from here on
+  // The simulation holds the spheres now; the rows move into its seed.
+  sim.seed_pair_history(model.generation->body.release_into_archive(), true);  // `body` is empty from here on
   if (!c.material_laws.empty()) sim.bond_across_materials_now();  // the seams between zones (pcrm_zones.hpp)
   const ParticleStore& p = sim.particles();
   if (c.pile)

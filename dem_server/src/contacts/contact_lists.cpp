@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 #include <utility>
 
 namespace dfc::dem {
@@ -72,6 +73,28 @@ Incidence build_incidence(std::size_t particle_count, const PairContacts& pairs,
     for (std::size_t k = 0; k < walls[w]->size(); ++k)
       inc.entry[fill[walls[w]->particle[k]]++] = std::uint32_t((wall_offsets[w] + k) << 1);
   return inc;
+}
+
+HistoryArchive HistoryArchive::adopt(std::size_t stride, std::vector<Key> keys, std::vector<double> rows) {
+  if (rows.size() != keys.size() * stride) throw std::logic_error("HistoryArchive::adopt: rows are not keys.size() x stride");
+  HistoryArchive archive(stride);
+  // Compacted in place, in order: row k moves to slot kept <= k.
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const double* row = rows.data() + k * stride;
+    if (std::all_of(row, row + stride, [](double v) { return v == 0.0; })) continue;
+    if (kept != k) {
+      std::copy_n(row, stride, rows.data() + kept * stride);
+      keys[kept] = keys[k];
+    }
+    ++kept;
+  }
+  keys.resize(kept);
+  rows.resize(kept * stride);
+  archive.keys_ = std::move(keys);
+  archive.rows_ = std::move(rows);
+  archive.seal();
+  return archive;
 }
 
 void HistoryArchive::add(Key key, const double* row) {
@@ -149,6 +172,7 @@ void copy_matched_rows(const PairContacts& before, const std::vector<std::uint32
 HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles) {
   HistoryArchive archive(pairs.stride);
   if (pairs.stride == 0) return archive;
+  archive.reserve(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k)
     archive.add({particles.id[pairs.first[k]], particles.id[pairs.second[k]]}, pairs.history.data() + k * pairs.stride);
   archive.seal();

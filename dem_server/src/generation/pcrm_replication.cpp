@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/region_config.hpp"
@@ -23,9 +25,21 @@ double clearance(const GeneratedSphere& s, const BedRegion& r) noexcept {
 
 HistoryArchive ReplicatedBody::archive() const {
   HistoryArchive out(stride);
+  out.reserve(pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) out.add({id[pairs[k][0]], id[pairs[k][1]]}, rows.data() + k * stride);
   out.seal();
   return out;
+}
+
+HistoryArchive ReplicatedBody::release_into_archive() {
+  std::vector<HistoryArchive::Key> keys(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) keys[k] = {id[pairs[k][0]], id[pairs[k][1]]};
+  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(id);
+  release(spheres);
+  release(material);
+  release(pairs);
+  return HistoryArchive::adopt(stride, std::move(keys), std::exchange(rows, {}));
 }
 
 ReplicatedBody replicate(const PreparedRev& rev, const BedRegion& region, double protrusion_fraction, bool periodic) {
