@@ -2,8 +2,8 @@
 # docs/looking_at_a_run.md's figure and size table, in one command:
 #   tools/looking_at_a_run_figures.sh BUILD_DIR
 # runs the bonded pile of tests/e2e/scenarios/pile_bonded_restart.json for 120
-# exchanges with a snapshot every 40 (what the test python.run_view runs; a
-# few seconds) and the demo's open pile (scenarios/demo_open_pile.json,
+# exchanges with a snapshot every 40, contacts included (what the test
+# python.run_view runs; a few seconds) and the demo's open pile (scenarios/demo_open_pile.json,
 # about 20 s), draws their last snapshots with tools/render.py into
 # docs/figures/looking_at_a_run/ and prints the bytes per particle per
 # snapshot (tools/snapshot_bytes.py).
@@ -18,6 +18,8 @@ import json, sys
 scenario = json.load(open(sys.argv[1]))
 scenario["name"] = "run_view"
 scenario["run"].update({"exchanges": 120, "snapshot_every": 40, "deadline_s": 300})
+# Every optional array, contacts included, so that the size table counts them all.
+scenario["participants"]["dem"]["config"]["snapshot"] = {"contents": ["particle_stress", "bonds", "contacts", "walls"]}
 json.dump(scenario, open(sys.argv[2], "w"), indent=1)
 PY
 "$BUILD/bin/coupler" run "$WORK/scenario.json" --out "$WORK/run" --no-progress
