@@ -286,13 +286,7 @@ std::string ConfigReader::string(std::string_view key) {
   }
   if (!given->is_string()) fail(key, "expected a string, got " + type_name(*given) + " " + short_dump(*given));
   std::string value = given->get<std::string>();
-  if (p != nullptr && !p->choices.empty()) {
-    if (std::find(p->choices.begin(), p->choices.end(), value) == p->choices.end()) {
-      std::string list;
-      for (const auto& a : p->choices) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-      fail(key, "unknown value \"" + echoed(value) + "\"; expected one of " + list);
-    }
-  }
+  if (p != nullptr) require_choice(key, value, p->choices);
   if (p != nullptr && key == declaration_->selector)
     if (const SectionVariant* variant = declaration_->find_variant(value)) variant_keys_ = variant->keys;
   return value;
@@ -306,11 +300,7 @@ std::string ConfigReader::string(std::string_view key, std::string fallback) {
 std::string ConfigReader::choice(std::string_view key, const std::vector<std::string>& allowed) {
   undeclared_call(key, "the choices");
   std::string value = string(key);
-  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end()) {
-    std::string list;
-    for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
-    fail(key, "unknown value \"" + echoed(value) + "\"; expected one of " + list);
-  }
+  require_choice(key, value, allowed);
   return value;
 }
 
@@ -321,15 +311,28 @@ std::string ConfigReader::choice(std::string_view key, const std::vector<std::st
 
 std::vector<std::string> ConfigReader::strings(std::string_view key) {
   const nlohmann::json* given = nullptr;
+  const ParameterDeclaration* p = nullptr;
   if (declaration_ != nullptr) {
-    given = declared_value(declared_as(key, ValueType::strings));
+    p = &declared_as(key, ValueType::strings);
+    given = declared_value(*p);
   } else {
     given = &require(key, "an array of strings");
   }
   const nlohmann::json& value = *given;
   if (!value.is_array() || !std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_string(); }))
     fail(key, "expected an array of strings, got " + short_dump(value));
-  return value.get<std::vector<std::string>>();
+  auto entries = value.get<std::vector<std::string>>();
+  // Declared choices hold for every entry; a wrong one is named by its place.
+  if (p != nullptr)
+    for (std::size_t k = 0; k < entries.size(); ++k) require_choice(std::string(key) + "[" + std::to_string(k) + "]", entries[k], p->choices);
+  return entries;
+}
+
+void ConfigReader::require_choice(std::string_view key, const std::string& value, const std::vector<std::string>& allowed) const {
+  if (allowed.empty() || std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return;
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+  fail(key, "unknown value \"" + echoed(value) + "\"; expected one of " + list);
 }
 
 ConfigReader ConfigReader::nested(const nlohmann::json& value, std::string path, const ParameterDeclaration* parameter) const {

@@ -28,16 +28,17 @@ std::string type_text(const ParameterDeclaration& p) {
     case ValueType::number: return "number";
     case ValueType::integer: return "integer";
     case ValueType::boolean: return "true|false";
-    case ValueType::string: {
-      if (p.choices.empty()) return "string";
+    case ValueType::string:
+    case ValueType::strings: {
+      const char* any = p.type == ValueType::string ? "string" : "[strings]";
+      if (p.choices.empty()) return any;
       std::string list;
       for (const auto& c : p.choices) list += (list.empty() ? "\"" : "|\"") + c + "\"";
-      return list;
+      return p.type == ValueType::string ? list : "[" + list + ", ...]";
     }
     case ValueType::vector3: return "[x,y,z]";
     case ValueType::numbers: return "[numbers]";
     case ValueType::integers3: return "[i,j,k] integers";
-    case ValueType::strings: return "[strings]";
     case ValueType::object: return "object";
     case ValueType::objects: return "[objects]";
     case ValueType::any: return "value";

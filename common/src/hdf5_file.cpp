@@ -309,8 +309,8 @@ Dataset Group::create_extendable_f64(const std::string& name, hsize_t chunk_rows
                              H5Dclose, "cannot create dataset '" + name + "' in " + object_name(id())));
 }
 
-Dataset Group::write_dataset(const std::string& name, hid_t native_type, std::span<const std::int64_t> shape,
-                             std::span<const std::byte> bytes) const {
+Dataset Group::write_dataset(const std::string& name, hid_t native_type, std::span<const std::int64_t> shape, std::span<const std::byte> bytes,
+                             int deflate_level) const {
   silence_error_printing();
   std::vector<hsize_t> dims;
   std::size_t count = 1;
@@ -327,7 +327,19 @@ Dataset Group::write_dataset(const std::string& name, hid_t native_type, std::sp
   const Handle space = dims.empty() ? make_handle(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a scalar dataspace")
                                     : make_handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose,
                                                   "cannot create the dataspace of dataset '" + name + "'");
-  Dataset dataset(make_handle(H5Dcreate2(id(), name.c_str(), native_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
+  if (deflate_level < 0 || deflate_level > 9) throw Error("dataset '" + name + "': deflate level " + std::to_string(deflate_level) + " is not in 0..9");
+  const Handle dcpl = make_handle(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create a dataset-creation property list");
+  if (deflate_level > 0 && !dims.empty() && count > 0) {
+    // Chunks of whole rows, at most about 1 MiB: HDF5's default chunk cache
+    // (1 MiB per dataset) holds one, and larger chunks deflate no better.
+    constexpr std::size_t chunk_bytes = std::size_t{1} << 20;
+    std::vector<hsize_t> chunk = dims;
+    const std::size_t row_bytes = count / static_cast<std::size_t>(dims[0]) * type_size;
+    chunk[0] = std::clamp<hsize_t>(chunk_bytes / row_bytes, 1, dims[0]);
+    check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "cannot set the chunks of dataset '" + name + "'");
+    check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(deflate_level)), "cannot set the compression of dataset '" + name + "'");
+  }
+  Dataset dataset(make_handle(H5Dcreate2(id(), name.c_str(), native_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), H5Dclose,
                               "cannot create dataset '" + name + "' in " + object_name(id())));
   if (count > 0)
     check(H5Dwrite(dataset.id(), native_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),

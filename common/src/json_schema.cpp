@@ -97,7 +97,12 @@ json value_schema(const ParameterDeclaration& p, json& defs, Form form) {
       schema = {{"type", "array"}, {"items", item}, {"minItems", 3}, {"maxItems", 3}};
       break;
     }
-    case ValueType::strings: schema = {{"type", "array"}, {"items", {{"type", "string"}}}}; break;
+    case ValueType::strings: {
+      json item{{"type", "string"}};
+      if (!p.choices.empty()) item["enum"] = p.choices;
+      schema = {{"type", "array"}, {"items", item}};
+      break;
+    }
     case ValueType::object:
       if (p.section != nullptr) schema = reference(*p.section, defs, form);
       else schema["type"] = "object";

@@ -103,14 +103,17 @@ bool is_index_rows(const XdmfArrayInfo* array, std::int64_t width) {
   return array != nullptr && array->shape.size() == 2 && array->shape[1] == width && array->shape[0] > 0 && is_integer(array->dtype);
 }
 
-// The bonds of a particle snapshot as lines: bond_particle_index [m, 2] rows
-// of particle_position. Null when the snapshot has none (or an older server
-// sent only the midpoints).
-const XdmfArrayInfo* bond_lines(const XdmfSnapshot& snapshot) {
+// Pairs of spheres of a particle snapshot drawn as lines, the bonds
+// ("bond_") or the contacts ("contact_"): <prefix>particle_index [m, 2] rows of
+// particle_position. Null when the snapshot has none (or an older server
+// sent only the bond midpoints).
+const XdmfArrayInfo* pair_lines(const XdmfSnapshot& snapshot, const std::string& prefix) {
   if (snapshot.kind != "particles" || !point_count(find(snapshot, "particle_position"))) return nullptr;
-  const XdmfArrayInfo* index = find(snapshot, "bond_particle_index");
+  const XdmfArrayInfo* index = find(snapshot, prefix + "particle_index");
   return is_index_rows(index, 2) ? index : nullptr;
 }
+
+const XdmfArrayInfo* bond_lines(const XdmfSnapshot& snapshot) { return pair_lines(snapshot, "bond_"); }
 
 // Bond midpoints of a particle snapshot (bond_position [m, 3] with bond_state [m])
 // from a server that sends no bond_particle_index: m, or nothing when the
@@ -177,27 +180,32 @@ class GridWriter {
     out_ << "        </Attribute>\n";
   }
 
-  // The bonds of a particle snapshot as lines between the two sphere centres
-  // (bond_particle_index into particle_position) with every bond_* array of
-  // one value per bond as a cell attribute: state (1 intact, 2 damaged, 3
-  // broken in tension, 4 broken in shear), forces, opening, damage. From an
-  // older server, points at the midpoints (bond_position) with their state
-  // and damage.
+  // Pairs as lines between the two sphere centres (<prefix>particle_index
+  // into particle_position) with every other <prefix>* array of one row per
+  // pair as a cell attribute; <prefix>position (a point per pair) is not one.
+  void line_grid(const XdmfSnapshot& snapshot, const XdmfArrayInfo& index, const std::string& prefix, const char* infix) {
+    const std::int64_t lines = index.shape[0];
+    open_grid(snapshot, infix);
+    out_ << "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << lines << "\" NodesPerElement=\"2\">\n";
+    data_item(snapshot, index, "          ");
+    out_ << "        </Topology>\n";
+    geometry(snapshot, *find(snapshot, "particle_position"));
+    for (const XdmfArrayInfo& array : snapshot.arrays) {
+      if (!array.name.starts_with(prefix) || &array == &index || array.name == prefix + "position" || array.shape.empty() ||
+          array.shape[0] != lines)
+        continue;
+      attribute(snapshot, array, "Cell");
+    }
+    out_ << "      </Grid>\n";
+  }
+
+  // The bonds of a particle snapshot as lines with their state (1 intact, 2
+  // damaged, 3 broken in tension, 4 broken in shear), forces, opening,
+  // damage. From an older server, points at the midpoints (bond_position)
+  // with their state and damage.
   void bond_grid(const XdmfSnapshot& snapshot) {
     if (const XdmfArrayInfo* index = bond_lines(snapshot)) {
-      const std::int64_t bonds = index->shape[0];
-      open_grid(snapshot, "_bonds_");
-      out_ << "        <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << bonds << "\" NodesPerElement=\"2\">\n";
-      data_item(snapshot, *index, "          ");
-      out_ << "        </Topology>\n";
-      geometry(snapshot, *find(snapshot, "particle_position"));
-      for (const XdmfArrayInfo& array : snapshot.arrays) {
-        if (!array.name.starts_with("bond_") || &array == index || array.name == "bond_position" || array.shape.empty() ||
-            array.shape[0] != bonds)
-          continue;
-        attribute(snapshot, array, "Cell");
-      }
-      out_ << "      </Grid>\n";
+      line_grid(snapshot, *index, "bond_", "_bonds_");
       return;
     }
     const std::optional<std::int64_t> bonds = bond_count(snapshot);
@@ -210,6 +218,12 @@ class GridWriter {
     attribute(snapshot, *state, "Node");
     if (const XdmfArrayInfo* damage = find(snapshot, "bond_damage")) attribute(snapshot, *damage, "Node");  // damage_bond's D
     out_ << "      </Grid>\n";
+  }
+
+  // The contact network of a particle snapshot as lines with their normal
+  // force (compression positive) and force vector: force chains.
+  void contact_grid(const XdmfSnapshot& snapshot) {
+    if (const XdmfArrayInfo* index = pair_lines(snapshot, "contact_")) line_grid(snapshot, *index, "contact_", "_contacts_");
   }
 
   // The walls and the pile of a particle snapshot as triangles where they are
@@ -310,9 +324,10 @@ std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfS
   out << "<?xml version=\"1.0\" ?>\n";
   out << "<Xdmf Version=\"2.0\">\n";
   out << "  <Domain>\n";
-  // Per role: its particles or grid, then the bonds and the walls of its particle snapshots.
+  // Per role: its particles or grid, then the bonds, the contacts and the walls of its particle snapshots.
   using Layer = void (GridWriter::*)(const XdmfSnapshot&);
-  const std::pair<const char*, Layer> layers[] = {{"", &GridWriter::grid}, {"_bonds", &GridWriter::bond_grid}, {"_walls", &GridWriter::wall_grid}};
+  const std::pair<const char*, Layer> layers[] = {
+      {"", &GridWriter::grid}, {"_bonds", &GridWriter::bond_grid}, {"_contacts", &GridWriter::contact_grid}, {"_walls", &GridWriter::wall_grid}};
   for (const std::string& role : roles) {
     for (const auto& [suffix, layer] : layers) {
       std::ostringstream grids;
@@ -324,7 +339,7 @@ std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfS
         if (kind.empty() && (snapshot.kind == "particles" || snapshot.kind == "grid")) kind = snapshot.kind;
       }
       if (grids.str().empty()) continue;  // an empty temporal collection makes readers fail
-      // The block's name says what it holds: dem_particles, continuum_grid, dem_bonds, dem_walls.
+      // The block's name says what it holds: dem_particles, continuum_grid, dem_bonds, dem_contacts, dem_walls.
       const std::string name = role + (*suffix != '\0' ? std::string(suffix) : "_" + kind);
       out << "    <Grid Name=\"" << escape(name) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
       out << grids.str();

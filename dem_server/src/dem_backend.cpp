@@ -337,19 +337,24 @@ std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
   arrays.push_back(protocol::Array::from_f64("particle_radius", {n}, p.radius));
   arrays.push_back(protocol::Array::from_f64("particle_velocity", {n, 3}, flatten(p.velocity)));
   arrays.push_back(protocol::Array::from_i64("particle_id", {n}, p.id));
-  // Per-particle Love–Weber stress (particle_stress.hpp): stress profiles and
-  // maps come from the file; ParaView shows it as a Tensor6 on the particles.
-  std::vector<double> stress;
-  stress.reserve(std::size_t(6 * n));
-  for (const Stress6& v : particle_stress(s)) stress.insert(stress.end(), v.begin(), v.end());
-  arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {n, 6}, stress));
+  // The rest as the DEM section's "snapshot" block chooses (snapshot_contents.hpp).
+  const SnapshotContents& contents = config_.snapshot;
+  if (contents.particle_stress) {
+    // Per-particle Love–Weber stress (particle_stress.hpp): stress profiles and
+    // maps come from the file; ParaView shows it as a Tensor6 on the particles.
+    std::vector<double> stress;
+    stress.reserve(std::size_t(6 * n));
+    for (const Stress6& v : particle_stress(s)) stress.insert(stress.end(), v.begin(), v.end());
+    arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {n, 6}, stress));
+  }
   if (s.materials().count() > 1) {  // graded bodies only: the zone (material) of each particle
     const std::vector<std::int64_t> material(p.material.begin(), p.material.end());
     arrays.push_back(protocol::Array::from_i64("particle_material", {n}, material));
   }
-  if (s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
+  if (contents.bonds && s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
+  if (contents.contacts) append_contact_arrays(s, contents.contacts_min_force, arrays);
   if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, model_.generation ? &model_.generation->profile : nullptr, arrays);
-  if (!s.walls().empty()) {
+  if (contents.walls && !s.walls().empty()) {
     std::vector<Vec3> vertices;
     std::vector<std::int64_t> facets, facet_wall;
     for (std::size_t w = 0; w < s.walls().size(); ++w) {

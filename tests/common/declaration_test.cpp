@@ -31,6 +31,7 @@ const SectionDeclaration& section() {
                      P::integer("count", "how many").integer_within(1, 9).fallback(3),
                      P::number("top_m", "m", "top").optional("the mesh's top"),
                      P::string("type", "shape").one_of({"box", "ball"}).fallback("ball"),
+                     P::strings("shows", "what to draw").one_of({"edges", "faces"}).fallback(json::array({"edges"})),
                      thread_count_declaration()},
       .selector = "type",
       .variants = {{"box", "a box", &box_keys()}, {"ball", "a ball", nullptr}},
@@ -76,6 +77,28 @@ TEST(DeclaredReader, BadValuesAreKeyedErrorsWithTheDeclaredBounds) {
   EXPECT_EQ(error_path(json{{"radius_m", 1.0}, {"radus_m", 1.0}}, read_all), "s.radus_m");  // unknown
   // An optional key the parser needs is missing like a required one.
   EXPECT_EQ(error_path(json{{"radius_m", 1.0}}, [](ConfigReader& c) { (void)c.number("top_m"); }), "s.top_m");
+}
+
+TEST(DeclaredReader, EveryEntryOfAStringListIsOneOfItsChoices) {
+  const json given{{"radius_m", 1.0}, {"shows", {"faces", "edges"}}};
+  ConfigReader cfg(given, "s", section());
+  EXPECT_EQ(cfg.strings("shows"), (std::vector<std::string>{"faces", "edges"}));
+  const json absent{{"radius_m", 1.0}};
+  ConfigReader defaults(absent, "s", section());
+  EXPECT_EQ(defaults.strings("shows"), (std::vector<std::string>{"edges"}));
+  // A wrong entry is named by its place, with the choices.
+  const json wrong{{"radius_m", 1.0}, {"shows", {"edges", "face"}}};
+  ConfigReader bad(wrong, "s", section());
+  try {
+    (void)bad.strings("shows");
+    ADD_FAILURE() << "an unknown entry was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key_path(), "s.shows[1]");
+    EXPECT_NE(std::string(e.what()).find("unknown value \"face\"; expected one of \"edges\", \"faces\""), std::string::npos) << e.what();
+  }
+  EXPECT_NE(describe_section(section()).find("shows  [\"edges\"|\"faces\", ...], default [\"edges\"]"), std::string::npos) << describe_section(section());
+  const json schema = schema_document(section(), "test", "test")["else"]["properties"]["shows"];
+  EXPECT_EQ(schema["items"]["enum"], json({"edges", "faces"}));
 }
 
 TEST(DeclaredReader, TheSelectorAddsItsVariantsKeys) {

@@ -224,6 +224,33 @@ TEST(XdmfDocument, BondsAreLinesBetweenTheSphereCentresWithTheirArraysOnTheCells
   EXPECT_EQ(bond_point_count(dem), std::optional<std::int64_t>(3));
 }
 
+TEST(XdmfDocument, ContactsAreLinesWithTheirForcesBesideTheBonds) {
+  // Two contacts and one bond among four particles: a block of its own,
+  // dem_contacts, after dem_bonds; the force vector is a Vector on the cells.
+  const XdmfSnapshot dem{"dem", "/snapshots/dem/000003", 0, 0.5, "particles",
+                         {{"particle_position", protocol::DType::f64, {4, 3}},
+                          {"bond_state", protocol::DType::i64, {1}},
+                          {"bond_particle_index", protocol::DType::i64, {1, 2}},
+                          {"contact_particle_index", protocol::DType::i64, {2, 2}},
+                          {"contact_normal_force_n", protocol::DType::f64, {2}},
+                          {"contact_force_n", protocol::DType::f64, {2, 3}}}};
+  const std::vector<XdmfSnapshot> snapshots = {dem};
+  const std::string xml = xdmf_document("r.h5", snapshots);
+  EXPECT_EQ(nesting_error(xml), "");
+  EXPECT_EQ(count(xml, "<Grid Name=\"dem_contacts\" GridType=\"Collection\" CollectionType=\"Temporal\">"), 1U);
+  EXPECT_LT(xml.find("Name=\"dem_bonds\""), xml.find("Name=\"dem_contacts\""));
+  EXPECT_EQ(count(xml, "<Topology TopologyType=\"Polyline\" NumberOfElements=\"2\" NodesPerElement=\"2\">\n          <DataItem Dimensions=\"2 2\""), 1U);
+  EXPECT_EQ(count(xml, "r.h5:/snapshots/dem/000003/contact_particle_index</DataItem>"), 1U);
+  EXPECT_EQ(count(xml, "<Attribute Name=\"contact_normal_force_n\" AttributeType=\"Scalar\" Center=\"Cell\">"), 1U);
+  EXPECT_EQ(count(xml, "<Attribute Name=\"contact_force_n\" AttributeType=\"Vector\" Center=\"Cell\">"), 1U);
+  EXPECT_EQ(count(xml, "Name=\"bond_state\""), 1U);  // the bonds keep their own arrays; no contact array on them
+  // Without contacts (before the first step, or left out by the scenario) there is no block.
+  XdmfSnapshot none = dem;
+  none.arrays[3].shape = {0, 2};
+  const std::vector<XdmfSnapshot> empty = {none};
+  EXPECT_EQ(count(xdmf_document("r.h5", empty), "dem_contacts"), 0U);
+}
+
 TEST(XdmfDocument, WallsAndThePileAreTrianglesWithTheirWallIndex) {
   XdmfSnapshot dem{"dem", "/snapshots/dem/000001", 0, 0.5, "particles",
                    {{"particle_position", protocol::DType::f64, {4, 3}},

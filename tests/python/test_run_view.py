@@ -10,6 +10,9 @@ exchanges, and the test reads results.xdmf with dfc_results.sidecar and checks:
     positions in that snapshot (looked up by id, not by the line's own index),
     its midpoint is on it and its opening is the gap between their surfaces;
   - the bond states of the last snapshot add up to the DEM's bond monitors;
+  - the contact lines hold every bonded pair that carries a force, with the
+    bond's normal force (the sign reversed: contacts count compression
+    positive), and the force vector's part along each line;
   - the walls block holds the pile, which moves by the pile's displacement
     (the monitor pile_displacement_m) from the first snapshot to the last,
     while the floor stays;
@@ -48,6 +51,7 @@ class BondedPileView(unittest.TestCase):
             scenario = json.load(f)
         scenario["name"] = "run_view"
         scenario["run"].update({"exchanges": 120, "snapshot_every": 40, "deadline_s": 300})
+        scenario["participants"]["dem"]["config"]["snapshot"] = {"contents": ["particle_stress", "bonds", "contacts", "walls"]}
         path = os.path.join(OUT, "run_view.json")
         with open(path, "w") as f:
             json.dump(scenario, f, indent=1)
@@ -117,6 +121,26 @@ class BondedPileView(unittest.TestCase):
                 np.testing.assert_allclose(opening, length - radius[rows].sum(axis=1), atol=1e-12)
                 checked += len(named)
         self.assertGreater(checked, 0)
+
+    def test_contacts_are_the_pairs_that_carry_force(self):
+        # Every bonded pair with a force is a contact line too, its normal
+        # force the bond's with the sign of a contact (compression positive).
+        snap, grid = self.snapshots[-1], self.blocks["dem_contacts"][-1]
+        self.assertEqual(grid.topology, "Polyline")
+        ends = grid.points[grid.connectivity]
+        np.testing.assert_array_equal(ends, snap.arrays["particle_position"][snap.arrays["contact_particle_index"]])
+        contact = {tuple(pair): f for pair, f in zip(grid.connectivity.tolist(), grid.cell_arrays["contact_normal_force_n"])}
+        bond_normal = snap.arrays["bond_normal_force_n"]
+        loaded = np.flatnonzero((bond_normal != 0) | (snap.arrays["bond_shear_force_n"] != 0))
+        self.assertGreater(len(loaded), 0)
+        for b in loaded:
+            self.assertEqual(contact[tuple(snap.arrays["bond_particle_index"][b])], -bond_normal[b])
+        # (In this short run every touching pair is a bonded one: no unbonded contact to count apart.)
+        force = grid.cell_arrays["contact_force_n"]
+        axis = ends[:, 1] - ends[:, 0]
+        # The normal force is the force vector's part along the line (on the first sphere: compression pushes it away from the second).
+        np.testing.assert_allclose(-np.einsum("ij,ij->i", force, axis) / np.linalg.norm(axis, axis=1),
+                                   grid.cell_arrays["contact_normal_force_n"], rtol=1e-9, atol=1e-12 * np.abs(force).max())
 
     def test_bond_states_add_up_to_the_monitors(self):
         snap, grid = self.snapshots[-1], self.blocks["dem_bonds"][-1]

@@ -468,6 +468,23 @@ const SectionDeclaration& neighbour() {
   return s;
 }
 
+const SectionDeclaration& snapshot() {
+  static const SectionDeclaration s{
+      .name = "dem.snapshot",
+      .doc = "what each snapshot of the particles holds beyond their position, radius, velocity and id (docs/looking_at_a_run.md)",
+      // The default is the output before the key existed; contacts are
+      // opt-in because at 4-6 per sphere they double a snapshot's size.
+      .parameters = {P::strings("contents", "the optional arrays: particle_stress (Love-Weber stress per sphere), bonds (every bonded pair as a "
+                                            "line), contacts (every pair carrying a force as a line), walls (walls and pile as triangles)")
+                         .one_of({"particle_stress", "bonds", "contacts", "walls"})
+                         .fallback(nlohmann::json::array({"particle_stress", "bonds", "walls"})),
+                     P::number("contacts_min_force_n", "N", "contacts whose normal force is smaller in magnitude are left out of the snapshot")
+                         .at_least(0.0)
+                         .fallback(0.0)},
+  };
+  return s;
+}
+
 }  // namespace
 
 const SectionDeclaration& dem_server() {
@@ -487,6 +504,7 @@ const SectionDeclaration& dem_server() {
                      P::object("pile", pile()).optional("no pile"),
                      P::object("ucs", ucs()).optional("no UCS loading"),
                      P::object("triaxial", triaxial()).optional("no triaxial loading"),
+                     P::object("snapshot", snapshot()).optional("the snapshot section's defaults"),
                      thread_count_declaration()},
   };
   return s;

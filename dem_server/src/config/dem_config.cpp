@@ -340,6 +340,7 @@ DemConfig parse_dem_config(const nlohmann::json& section) {
     throw ConfigError("particles.generator",
                       "\"radius_expansion\" fills a periodic cell or the six walls of a triaxial section: add a \"periodic\" block with min_m and "
                       "max_m, or a \"triaxial\" section");
+  c.snapshot = read_snapshot_contents(cfg);
   c.threads = read_thread_count(cfg);
   cfg.finish();
   return c;

@@ -15,6 +15,7 @@ struct PairLoad {
   double normal = 0.0;  ///< N, tension positive
   double shear = 0.0;   ///< N, magnitude
   double gap = 0.0;     ///< m, surface gap
+  Vec3 force;           ///< N, on the first sphere
 };
 
 class PairLoads {
@@ -41,6 +42,7 @@ class PairLoads {
     // The force is the one on the first sphere: pulled towards the second
     // (along +n) when the pair is in tension.
     const Vec3& f = (*forces_)[k];
+    out.force = f;
     out.normal = dot(f, n);
     out.shear = norm(f - out.normal * n);
     return out;
@@ -89,6 +91,25 @@ void append_bond_arrays(const Simulation& s, std::vector<protocol::Array>& array
   arrays.push_back(protocol::Array::from_f64("bond_shear_force_n", {m}, shear));
   arrays.push_back(protocol::Array::from_f64("bond_opening_m", {m}, opening));
   if (has_damage) arrays.push_back(protocol::Array::from_f64("bond_damage", {m}, damage));
+}
+
+void append_contact_arrays(const Simulation& s, double min_normal_force, std::vector<protocol::Array>& arrays) {
+  const PairContacts& pairs = s.pair_contacts();
+  const PairLoads loads(s);
+  std::vector<std::int64_t> index;
+  std::vector<double> normal, force;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    // The neighbour list holds pairs that are near but apart: no force, no contact.
+    const PairLoad load = loads.load(k);
+    if (load.force == Vec3{} || std::abs(load.normal) < min_normal_force) continue;
+    index.insert(index.end(), {std::int64_t(pairs.first[k]), std::int64_t(pairs.second[k])});
+    normal.push_back(-load.normal);
+    force.insert(force.end(), {load.force.x, load.force.y, load.force.z});
+  }
+  const auto c = std::int64_t(normal.size());
+  arrays.push_back(protocol::Array::from_i64("contact_particle_index", {c, 2}, index));
+  arrays.push_back(protocol::Array::from_f64("contact_normal_force_n", {c}, normal));
+  arrays.push_back(protocol::Array::from_f64("contact_force_n", {c, 3}, force));
 }
 
 }  // namespace dfc::dem

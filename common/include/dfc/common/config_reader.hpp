@@ -87,6 +87,8 @@ class ConfigReader {
   /// A string that must be one of `allowed`; the error lists them.
   [[nodiscard]] std::string choice(std::string_view key, const std::vector<std::string>& allowed);
   [[nodiscard]] std::string choice(std::string_view key, const std::vector<std::string>& allowed, std::string fallback);
+  /// An array of strings; where the declaration gives choices (one_of), every
+  /// entry must be one of them and the error names the entry ("contents[2]").
   [[nodiscard]] std::vector<std::string> strings(std::string_view key);
 
   // Nested objects ----------------------------------------------------------
@@ -111,6 +113,8 @@ class ConfigReader {
   std::int64_t integer_in(std::string_view key, std::int64_t min_value, std::int64_t max_value);
   std::int64_t checked_integer(std::string_view key, const nlohmann::json& value, std::int64_t min_value, std::int64_t max_value) const;
   double checked_number(std::string_view key, const nlohmann::json& value, Bounds bounds) const;
+  // Throws ConfigError for `key` listing `allowed` when `value` is not one of them (none: any value).
+  void require_choice(std::string_view key, const std::string& value, const std::vector<std::string>& allowed) const;
   // Declared readers: the declaration of `key`, checked to be of `type`.
   const ParameterDeclaration& declared_as(std::string_view key, ValueType type) const;
   // Declared readers: the value of `key`, its declared default when absent;

@@ -111,9 +111,13 @@ class Group {
   /// 1-D for `width` 1, else [N, width] (e.g. 3 for a vector per row).
   [[nodiscard]] Dataset create_extendable_f64(const std::string& name, hsize_t chunk_rows, hsize_t width = 1) const;
   /// A fixed-size dataset of `native_type` with `shape` (empty: scalar) holding `bytes`,
-  /// whose size must be shape product × type size.
-  Dataset write_dataset(const std::string& name, hid_t native_type, std::span<const std::int64_t> shape,
-                        std::span<const std::byte> bytes) const;
+  /// whose size must be shape product × type size. `deflate_level` 0 stores it
+  /// as given (contiguous); 1 to 9 stores it in chunks of whole rows (at most
+  /// about 1 MiB each) compressed with deflate (zlib) at that level, which
+  /// every HDF5 reader (h5py, ParaView) undoes unasked. A scalar or an empty
+  /// dataset is stored as given whatever the level (a chunk needs an extent).
+  Dataset write_dataset(const std::string& name, hid_t native_type, std::span<const std::int64_t> shape, std::span<const std::byte> bytes,
+                        int deflate_level = 0) const;
   [[nodiscard]] Dataset open_dataset(const std::string& path) const;
   /// Unlinks the member `name` (a group with all it holds, or a dataset).
   void remove(const std::string& name) const;

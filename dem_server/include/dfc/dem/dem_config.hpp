@@ -20,6 +20,7 @@
 #include "dfc/dem/pcrm_generation.hpp"
 #include "dfc/dem/periodic_config.hpp"
 #include "dfc/dem/radius_expansion.hpp"
+#include "dfc/dem/snapshot_contents.hpp"
 #include "dfc/dem/timestep.hpp"
 #include "dfc/dem/triaxial_walls.hpp"
 #include "dfc/dem/ucs_platens.hpp"
@@ -112,6 +113,7 @@ struct DemConfig {
   std::optional<UcsConfig> ucs;
   std::optional<TriaxialConfig> triaxial;
   std::optional<PeriodicConfig> periodic;
+  SnapshotContents snapshot;       ///< what each particle snapshot holds
   int threads = 0;
 };
 

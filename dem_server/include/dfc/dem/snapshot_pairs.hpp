@@ -15,6 +15,16 @@
 //   bond_damage         f64 [m]    damage_bond only: D (1 once broken)
 // The forces are the pair's total (bond and any contact part) of the last
 // step; zero before the first step, when no force has been evaluated.
+//
+// Contacts: the force network, every pair of spheres whose force at the last
+// step is not zero (touching, or held by a bond) and whose normal force is at
+// least the threshold in magnitude (snapshot_contents.hpp), one row each:
+//   contact_particle_index i64 [c,2]  rows of the two spheres (particle_id[row] names them)
+//   contact_normal_force_n f64 [c]    N, the force along the centre line, compression
+//                                     positive (force chains are compressive; a bond
+//                                     in tension shows negative)
+//   contact_force_n        f64 [c,3]  N, the whole force on the first sphere from the second
+// None before the first step.
 #include <vector>
 
 #include "dfc/dem/simulation.hpp"
@@ -24,5 +34,9 @@ namespace dfc::dem {
 
 /// Appends the bond arrays above to `arrays` (bonded laws only).
 void append_bond_arrays(const Simulation& s, std::vector<protocol::Array>& arrays);
+
+/// Appends the contact arrays above to `arrays`, the contacts whose normal
+/// force is below `min_normal_force` (N) in magnitude left out.
+void append_contact_arrays(const Simulation& s, double min_normal_force, std::vector<protocol::Array>& arrays);
 
 }  // namespace dfc::dem
