@@ -306,7 +306,7 @@ def render_page(record):
            "[results.json](results.json) too. Tests guard what must not drift (e.g. the calibrated UCS of the",
            "small sample, `tests/e2e/ucs_test.cpp`); this page shows what the full scenarios give. Run times are",
            "wall times on the machine named; on a shared machine (a load average above its cores) they are",
-           "several times the idle times docs/status.md gives.",
+           "several times the idle times docs/calibrating.md gives.",
            ""]
     for item in ITEMS:
         entry = record.get(item.name)
