@@ -251,8 +251,15 @@ def render_pvbatch(run_dir, out, snapshot):
     pattern = os.path.join(out, ("frame_%06d.png" if snapshot is None else "snapshot_%06d.png"))
     with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as script:
         script.write(PVBATCH_SCRIPT)
+    # Debian's ParaView renders through X (no offscreen OpenGL): without a
+    # display pvbatch aborts creating its window, so it runs in a virtual one.
+    command = [PVBATCH, script.name, xdmf, pattern, str(first), str(last)]
+    if not os.environ.get("DISPLAY"):
+        if shutil.which("xvfb-run") is None:
+            raise SystemExit("render.py: pvbatch needs an X display and there is none; install xvfb (xvfb-run) or use --renderer matplotlib")
+        command = ["xvfb-run", "-a"] + command
     try:
-        subprocess.run([PVBATCH, script.name, xdmf, pattern, str(first), str(last)], check=True)
+        subprocess.run(command, check=True)
     finally:
         os.unlink(script.name)
     return [pattern % k for k in range(first, last)]

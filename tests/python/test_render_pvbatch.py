@@ -17,6 +17,9 @@ from dfc_test_support import require_modules
 if shutil.which("pvbatch") is None:
     print("SKIPPED: pvbatch (ParaView's Python) is not on PATH; tools/render.py uses its matplotlib path here")
     sys.exit(77)
+if not os.environ.get("DISPLAY") and shutil.which("xvfb-run") is None:
+    print("SKIPPED: no X display and no xvfb-run; Debian's pvbatch renders through X")
+    sys.exit(77)
 require_modules("numpy", "h5py", "matplotlib")
 
 import matplotlib.image  # noqa: E402
