@@ -1,10 +1,15 @@
 #include "dfc/dem/contact_lists.hpp"
-#include "dfc/dem/parallel.hpp"
+
+#include <omp.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <stdexcept>
 #include <utility>
+
+#include "dfc/dem/huge_pages.hpp"
+#include "dfc/dem/parallel.hpp"
 
 namespace dfc::dem {
 
@@ -157,16 +162,193 @@ std::vector<std::uint32_t> match_previous_pairs(const PairContacts& before, std:
   return match;
 }
 
-void copy_matched_rows(const PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads) {
-  const auto n = static_cast<std::int64_t>(match.size());
-  const std::size_t stride = pairs.stride;
-#pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
-  for (std::int64_t k = 0; k < n; ++k) {
-    const std::uint32_t m = match[std::size_t(k)];
-    double* row = pairs.row(std::size_t(k));
-    if (m != no_previous_pair) std::copy_n(before.history.data() + std::size_t(m) * stride, stride, row);
-    else std::fill_n(row, stride, 0.0);
+namespace {
+
+/// The rows of `pairs` in parts and blocks: the parts as a static loop over
+/// the rows splits them (each thread first-touches the rows its part of the
+/// pair loop reads), each part copied in blocks of about one 2 MiB unit.
+struct RowBlocks {
+  std::size_t rows = 0, parts = 1, block_rows = 1, blocks = 0;
+  RowBlocks(std::size_t n, std::size_t row_bytes, int threads)
+      : rows(n),
+        parts(std::int64_t(n) >= min_parallel_items ? std::size_t(std::max(threads, 1)) : 1),
+        block_rows(std::max<std::size_t>(1, huge_page_bytes / std::max<std::size_t>(row_bytes, 1))) {
+    for (std::size_t t = 0; t < parts; ++t) blocks = std::max(blocks, (start(t + 1) - start(t) + block_rows - 1) / block_rows);
   }
+  [[nodiscard]] std::size_t start(std::size_t part) const noexcept { return rows * part / parts; }
+  /// Rows [first, last) of block b of part t.
+  [[nodiscard]] std::pair<std::size_t, std::size_t> block(std::size_t t, std::size_t b) const noexcept {
+    const std::size_t first = std::min(start(t) + b * block_rows, start(t + 1));
+    return {first, std::min(first + block_rows, start(t + 1))};
+  }
+};
+
+/// The whole 2 MiB units of an array (release_whole_units gives back only those).
+struct WholeUnits {
+  std::uintptr_t first = 0, end = 0;
+  WholeUnits(const void* data, std::size_t bytes)
+      : first((reinterpret_cast<std::uintptr_t>(data) + huge_page_bytes - 1) / huge_page_bytes),
+        end((reinterpret_cast<std::uintptr_t>(data) + bytes) / huge_page_bytes) {}
+  [[nodiscard]] std::size_t count() const noexcept { return end > first ? std::size_t(end - first) : 0; }
+  /// Gives back units [from, to) of the count() (indices from first).
+  void release(std::size_t from, std::size_t to) const noexcept {
+    if (to > from) release_whole_units(reinterpret_cast<void*>((first + from) * huge_page_bytes), (to - from) * huge_page_bytes);
+  }
+};
+
+void write_row(const double* from, std::size_t stride, double* row) noexcept {
+  if (from) std::copy_n(from, stride, row);
+  else std::fill_n(row, stride, 0.0);
+}
+
+/// The direct copy: block by block, each old unit given back after the block
+/// in which its last reader was written (`done_after`, 0: no reader).
+void copy_releasing_as_read(const PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, const RowBlocks& rows,
+                            const WholeUnits& units, const std::vector<std::size_t>& done_after) {
+  // The units in order of release: those given back after block b are unit_order[release[b] .. release[b + 1]).
+  std::vector<std::size_t> release(rows.blocks + 2, 0), unit_order(units.count());
+  for (const std::size_t b : done_after) ++release[b + 1];
+  for (std::size_t b = 0; b + 1 < release.size(); ++b) release[b + 1] += release[b];
+  std::vector<std::size_t> fill(release.begin(), release.end() - 1);
+  for (std::size_t u = 0; u < units.count(); ++u) unit_order[fill[done_after[u]]++] = u;
+  const auto release_after = [&](std::size_t b) {
+    for (std::size_t e = release[b]; e < release[b + 1]; ++e) units.release(unit_order[e], unit_order[e] + 1);
+  };
+  const std::size_t stride = pairs.stride;
+  release_after(0);
+#pragma omp parallel num_threads(int(rows.parts))
+  {
+    const auto t = std::size_t(omp_get_thread_num());
+    for (std::size_t b = 0; b < rows.blocks; ++b) {
+      const auto [first, last] = rows.block(t, b);
+      for (std::size_t k = first; k < last; ++k)
+        write_row(match[k] == no_previous_pair ? nullptr : before.history.data() + std::size_t(match[k]) * stride, stride, pairs.row(k));
+#pragma omp barrier
+#pragma omp single
+      release_after(b + 1);
+    }
+  }
+}
+
+/// The copy through a staging area, for an order far from the old one (the
+/// first rebuild after a search to the bond gap sorted the particles by
+/// larger cells): (1) the old rows in their own order into the staging area,
+/// grouped by the block of the new rows that reads them, each old unit given
+/// back once passed; (2) group by group into the new rows, each staged group
+/// given back once written. At no time do the old and new rows both exist
+/// whole; the price is a second copy.
+void copy_through_staging(PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, const RowBlocks& rows,
+                          int threads) {
+  const std::size_t stride = pairs.stride, old_rows = before.size();
+  const std::size_t groups = rows.parts * rows.blocks;
+  const auto group_of = [&](std::size_t k) {  // part-major: the groups of part t are t * blocks ..
+    const std::size_t t = std::min(rows.parts - 1, k * rows.parts / std::max<std::size_t>(rows.rows, 1));
+    const std::size_t part = k < rows.start(t) ? t - 1 : k >= rows.start(t + 1) ? t + 1 : t;
+    return part * rows.blocks + (k - rows.start(part)) / rows.block_rows;
+  };
+  std::vector<std::uint32_t> reader(old_rows, no_previous_pair);
+  for (std::size_t k = 0; k < rows.rows; ++k)
+    if (match[k] != no_previous_pair) reader[match[k]] = std::uint32_t(k);
+  // (1) Per part of the old rows and group, the staged rows: their slots are then fixed whatever the thread count.
+  const RowBlocks old_parts(old_rows, stride * sizeof(double), threads);
+  std::vector<std::size_t> slot((old_parts.parts * groups) + 1, 0);
+  for (std::size_t t = 0; t < old_parts.parts; ++t)
+    for (std::size_t m = old_parts.start(t); m < old_parts.start(t + 1); ++m)
+      if (reader[m] != no_previous_pair) ++slot[group_of(reader[m]) * old_parts.parts + t + 1];
+  for (std::size_t e = 0; e + 1 < slot.size(); ++e) slot[e + 1] += slot[e];
+  const std::vector<std::size_t> group_start = [&] {
+    std::vector<std::size_t> out(groups + 1);
+    for (std::size_t g = 0; g <= groups; ++g) out[g] = slot[g * old_parts.parts];
+    return out;
+  }();
+  // Each staged row written once below, before it is read. Not on huge
+  // pages: the first pass writes to every group at once, and a huge page
+  // would make each group's whole 2 MiB resident at its first row.
+  UninitialisedDoubles staged(group_start[groups] * stride);
+  std::vector<std::uint32_t> staged_reader(group_start[groups]);
+  const WholeUnits old_units(before.history.data(), before.history.size() * sizeof(double));
+  const auto unit_of = [&](std::size_t m) {  // the whole unit that holds row m's start (0 before the first)
+    const std::uintptr_t u = reinterpret_cast<std::uintptr_t>(before.history.data() + m * stride) / huge_page_bytes;
+    return u > old_units.first ? std::size_t(u - old_units.first) : std::size_t(0);
+  };
+#pragma omp parallel num_threads(int(old_parts.parts))
+  {
+    const auto t = std::size_t(omp_get_thread_num());
+    std::vector<std::size_t> fill(groups);
+    for (std::size_t g = 0; g < groups; ++g) fill[g] = slot[g * old_parts.parts + t];
+    const std::size_t first = old_parts.start(t), last = old_parts.start(t + 1);
+    // This part's whole units, given back as the pass leaves each one (the shared ones at its ends stay).
+    std::size_t released = first == 0 ? 0 : unit_of(first) + 1;
+    for (std::size_t m = first; m < last; ++m) {
+      if (reader[m] != no_previous_pair) {
+        const std::size_t e = fill[group_of(reader[m])]++;
+        std::copy_n(before.history.data() + m * stride, stride, staged.data() + e * stride);
+        staged_reader[e] = reader[m];
+      }
+      if ((m & 1023) == 1023 && old_units.count() > 0) {
+        const std::size_t passed = std::min(unit_of(m + 1), old_units.count());
+        old_units.release(released, passed);
+        released = std::max(released, passed);
+      }
+    }
+  }
+  before = PairContacts{};
+  // (2) Group by group (a part's groups on its thread, as the rows' first
+  // touch wants), each thread giving back the staged units it has passed
+  // (a part's groups are contiguous in the staging area).
+  const WholeUnits staged_units(staged.data(), staged.size() * sizeof(double));
+  const auto unit_at = [&](std::size_t e) {  // the whole unit that holds staged row e's start, clamped to the whole ones
+    const std::uintptr_t u = reinterpret_cast<std::uintptr_t>(staged.data() + e * stride) / huge_page_bytes;
+    return std::clamp(u, staged_units.first, std::max(staged_units.first, staged_units.end)) - staged_units.first;
+  };
+#pragma omp parallel num_threads(int(rows.parts))
+  {
+    const auto t = std::size_t(omp_get_thread_num());
+    std::size_t released = t == 0 ? 0 : unit_at(group_start[t * rows.blocks]) + 1;  // the unit shared with the part before stays
+    for (std::size_t b = 0; b < rows.blocks; ++b) {
+      const std::size_t g = t * rows.blocks + b;
+      for (std::size_t e = group_start[g]; e < group_start[g + 1]; ++e) write_row(staged.data() + e * stride, stride, pairs.row(staged_reader[e]));
+      const auto [first, last] = rows.block(t, b);
+      for (std::size_t k = first; k < last; ++k)
+        if (match[k] == no_previous_pair) write_row(nullptr, stride, pairs.row(k));
+      const std::size_t passed = unit_at(group_start[g + 1]);
+      staged_units.release(released, passed);
+      released = std::max(released, passed);
+    }
+  }
+}
+
+}  // namespace
+
+void move_matched_rows(PairContacts&& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads) {
+  const std::size_t stride = pairs.stride, row_bytes = stride * sizeof(double);
+  const RowBlocks rows(match.size(), row_bytes, threads);
+  // Per whole unit of the old history: after which block of the direct copy
+  // no new row reads it any more (0: none reads it).
+  const WholeUnits units(before.history.data(), before.history.size() * sizeof(double));
+  std::vector<std::size_t> done_after(units.count(), 0);
+  for (std::size_t t = 0; t < rows.parts && units.count() > 0 && row_bytes > 0; ++t)
+    for (std::size_t k = rows.start(t); k < rows.start(t + 1); ++k) {
+      if (match[k] == no_previous_pair) continue;
+      const std::size_t block = (k - rows.start(t)) / rows.block_rows + 1;
+      const auto row = reinterpret_cast<std::uintptr_t>(before.history.data() + std::size_t(match[k]) * stride);
+      for (std::uintptr_t u = std::max(row / huge_page_bytes, units.first); u <= (row + row_bytes - 1) / huge_page_bytes && u < units.end; ++u)
+        done_after[u - units.first] = std::max(done_after[u - units.first], block);
+    }
+  // What the direct copy would hold beyond the old rows at its worst: the new
+  // rows written less the old units given back, after each block. Where it
+  // would hold more than a quarter of the old rows, the rows go through the staging area.
+  std::vector<double> given_back(rows.blocks + 1, 0.0);
+  for (const std::size_t b : done_after) given_back[b] += double(huge_page_bytes);
+  double released = 0.0, worst = 0.0;
+  for (std::size_t b = 0; b <= rows.blocks; ++b) {
+    released += given_back[b];
+    const double written = double(std::min(b * rows.block_rows, rows.rows / rows.parts + 1) * rows.parts * row_bytes);
+    worst = std::max(worst, written - released);
+  }
+  if (worst > 0.25 * double(before.history.size() * sizeof(double))) copy_through_staging(before, match, pairs, rows, threads);
+  else copy_releasing_as_read(before, match, pairs, rows, units, done_after);
+  before = PairContacts{};
 }
 
 HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles) {

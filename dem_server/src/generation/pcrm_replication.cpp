@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 
@@ -47,19 +48,43 @@ ReplicatedBody replicate(const PreparedRev& rev, const BedRegion& region, double
   return replicate(rev, lo, hi, [&](const GeneratedSphere& s) { return clearance(s, region) >= -protrusion_fraction * s.radius; }, periodic);
 }
 
+std::array<int, 3> copies_to_cover(const Vec3& cell_length, const Vec3& lo, const Vec3& hi) {
+  const double extent[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
+  const double edge[3] = {cell_length.x, cell_length.y, cell_length.z};
+  std::array<int, 3> copies{};
+  for (std::size_t a = 0; a < 3; ++a) copies[a] = std::max(1, int(std::ceil(extent[a] / edge[a])));
+  return copies;
+}
+
+void reserve_room(ReplicatedBody& body, std::size_t spheres, std::size_t pairs) {
+  body.id.reserve(body.id.size() + spheres);
+  body.spheres.reserve(body.spheres.size() + spheres);
+  body.material.reserve(body.material.size() + spheres);
+  body.pairs.reserve(body.pairs.size() + pairs);
+  body.rows.reserve(body.rows.size() + pairs * body.stride);
+}
+
 ReplicatedBody replicate(const PreparedRev& rev, const Vec3& lo, const Vec3& hi, const std::function<bool(const GeneratedSphere&)>& keep,
                          bool periodic) {
-  const Vec3 l = rev.cell.length();
   ReplicatedBody body;
   body.stride = rev.stride;
-  const double extent[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
-  const double edge[3] = {l.x, l.y, l.z};
-  for (std::size_t a = 0; a < 3; ++a) body.copies[a] = std::max(1, int(std::ceil(extent[a] / edge[a])));
-  const auto [nx, ny, nz] = body.copies;
+  body.copies = replicate_into(body, rev, lo, hi, keep, 0, 0, periodic);
+  return body;
+}
+
+std::array<int, 3> replicate_into(ReplicatedBody& body, const PreparedRev& rev, const Vec3& lo, const Vec3& hi,
+                                  const std::function<bool(const GeneratedSphere&)>& keep, std::uint16_t material, std::int64_t id_offset,
+                                  bool periodic) {
+  if (body.stride != rev.stride) throw std::logic_error("replicate_into: the body's history stride is not the REV's");
+  const Vec3 l = rev.cell.length();
+  const std::array<int, 3> part_copies = copies_to_cover(l, lo, hi);
+  const auto [nx, ny, nz] = part_copies;
   const std::int64_t copies = std::int64_t(nx) * ny * nz;
   const std::int64_t n = std::int64_t(rev.spheres.size());
-  if (double(copies) * double(n) > double(std::numeric_limits<std::uint32_t>::max()))
+  if (double(body.spheres.size()) + double(copies) * double(n) > double(std::numeric_limits<std::uint32_t>::max()))
     throw UserError("replicating the REV " + std::to_string(copies) + " times gives more spheres than one DEM model can hold; use a smaller region or a larger scale factor");
+  // Every copy of every sphere and pair at most: appending then never copies the arrays.
+  reserve_room(body, std::size_t(copies * n), std::size_t(copies) * rev.pairs.size());
 
   // Slot of (sphere i, copy c) in the body, or -1 if trimmed; copy index c = (cz ny + cy) nx + cx.
   std::vector<std::int64_t> slot(std::size_t(copies * n), -1);
@@ -71,8 +96,8 @@ ReplicatedBody replicate(const PreparedRev& rev, const Vec3& lo, const Vec3& hi,
       if (!keep(placed)) continue;
       slot[std::size_t(i * copies + c)] = std::int64_t(body.spheres.size());
       body.spheres.push_back(placed);
-      body.id.push_back(i * copies + c);
-      body.material.push_back(0);
+      body.id.push_back(i * copies + c + id_offset);
+      body.material.push_back(material);
     }
   }
   // Pairs: first of copy c with second of copy c + image, where that copy exists.
@@ -94,7 +119,7 @@ ReplicatedBody replicate(const PreparedRev& rev, const Vec3& lo, const Vec3& hi,
       body.rows.insert(body.rows.end(), rev.rows.begin() + std::ptrdiff_t(k * rev.stride), rev.rows.begin() + std::ptrdiff_t((k + 1) * rev.stride));
     }
   }
-  return body;
+  return part_copies;
 }
 
 }  // namespace dfc::dem

@@ -26,38 +26,33 @@ int length_dimension(const std::string& unit) {
 
 bool holds_centre(const BedRegion& region, const Vec3& x) { return clearance(GeneratedSphere{x, 0.0}, region) >= 0.0; }
 
-/// Appends `part` to `whole` as zone `zone`, its ids shifted by id_offset.
-void append_zone(ReplicatedBody& whole, const ReplicatedBody& part, std::uint16_t zone, std::int64_t id_offset) {
-  const auto first = std::uint32_t(whole.spheres.size());
-  for (std::size_t i = 0; i < part.spheres.size(); ++i) {
-    whole.id.push_back(part.id[i] + id_offset);
-    whole.spheres.push_back(part.spheres[i]);
-    whole.material.push_back(zone);
-  }
-  for (const auto& p : part.pairs) whole.pairs.push_back({p[0] + first, p[1] + first});
-  whole.rows.insert(whole.rows.end(), part.rows.begin(), part.rows.end());
-}
-
-/// Removes the spheres marked in `removed` with their pairs.
+/// Removes the spheres marked in `removed` with their pairs, compacting the
+/// arrays in place (a copy of the kept body would hold the rows twice).
 void remove_spheres(ReplicatedBody& body, const std::vector<bool>& removed) {
   std::vector<std::int64_t> new_index(body.spheres.size(), -1);
-  ReplicatedBody kept;
-  kept.stride = body.stride;
-  kept.copies = body.copies;
+  std::size_t kept = 0;
   for (std::size_t i = 0; i < body.spheres.size(); ++i) {
     if (removed[i]) continue;
-    new_index[i] = std::int64_t(kept.spheres.size());
-    kept.id.push_back(body.id[i]);
-    kept.spheres.push_back(body.spheres[i]);
-    kept.material.push_back(body.material[i]);
+    new_index[i] = std::int64_t(kept);
+    body.id[kept] = body.id[i];
+    body.spheres[kept] = body.spheres[i];
+    body.material[kept] = body.material[i];
+    ++kept;
   }
+  body.id.resize(kept);
+  body.spheres.resize(kept);
+  body.material.resize(kept);
+  // Pair k moves to slot kept_pairs <= k: a row is only ever copied downwards, onto one already moved.
+  std::size_t kept_pairs = 0;
   for (std::size_t k = 0; k < body.pairs.size(); ++k) {
     const std::int64_t a = new_index[body.pairs[k][0]], b = new_index[body.pairs[k][1]];
     if (a < 0 || b < 0) continue;
-    kept.pairs.push_back({std::uint32_t(a), std::uint32_t(b)});
-    kept.rows.insert(kept.rows.end(), body.rows.begin() + std::ptrdiff_t(k * body.stride), body.rows.begin() + std::ptrdiff_t((k + 1) * body.stride));
+    body.pairs[kept_pairs] = {std::uint32_t(a), std::uint32_t(b)};
+    if (kept_pairs != k) std::copy_n(body.rows.begin() + std::ptrdiff_t(k * body.stride), body.stride, body.rows.begin() + std::ptrdiff_t(kept_pairs * body.stride));
+    ++kept_pairs;
   }
-  body = std::move(kept);
+  body.pairs.resize(kept_pairs);
+  body.rows.resize(kept_pairs * body.stride);
 }
 
 /// Spheres hashed by cells of edge 2 r_max (each sphere in its centre's
@@ -222,7 +217,10 @@ ZonedBody replicate_zones(const PreparedRev& rev, const std::vector<HistoryColum
   ZonedBody out;
   out.body.stride = rev.stride;
   const auto [body_lo, body_hi] = region_bounds(region);
-  std::int64_t id_offset = 0;
+  // Each zone's box, its REV's cell, and room for every copy of every zone:
+  // the zones are then appended to one body without copying it.
+  std::vector<std::array<Vec3, 2>> boxes;
+  std::size_t sphere_bound = 0, pair_bound = 0;
   for (std::size_t k = 0; k < zones.size(); ++k) {
     const BedRegion& zone_region = zones[k].region ? *zones[k].region : region;
     const auto [zone_lo, zone_hi] = region_bounds(zone_region);
@@ -230,6 +228,18 @@ ZonedBody replicate_zones(const PreparedRev& rev, const std::vector<HistoryColum
     const Vec3 hi{std::min(zone_hi.x, body_hi.x), std::min(zone_hi.y, body_hi.y), std::min(zone_hi.z, body_hi.z)};
     if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
       throw ConfigError("particles.zones[" + std::to_string(k) + "].region", "the zone does not meet particles.region");
+    boxes.push_back({lo, hi});
+    const double s = zones[k].scale_factor / zones.front().scale_factor;
+    const Vec3 cell_length = s == 1.0 ? rev.cell.length() : s * rev.cell.hi - s * rev.cell.lo;  // as scaled_rev scales the cell
+    const auto copies = copies_to_cover(cell_length, lo, hi);
+    const auto count = std::size_t(copies[0]) * std::size_t(copies[1]) * std::size_t(copies[2]);
+    sphere_bound += count * rev.spheres.size();
+    pair_bound += count * rev.pairs.size();
+  }
+  reserve_room(out.body, sphere_bound, pair_bound);
+  std::int64_t id_offset = 0;
+  for (std::size_t k = 0; k < zones.size(); ++k) {
+    const BedRegion& zone_region = zones[k].region ? *zones[k].region : region;
     const PreparedRev zone_rev = scaled_rev(rev, zones[k].scale_factor / zones.front().scale_factor, columns);
     const auto keep = [&](const GeneratedSphere& s) {
       if (clearance(s, region) < -protrusion_fraction * s.radius || !holds_centre(zone_region, s.centre)) return false;
@@ -237,10 +247,9 @@ ZonedBody replicate_zones(const PreparedRev& rev, const std::vector<HistoryColum
         if (holds_centre(*zones[e].region, s.centre)) return false;
       return true;
     };
-    const ReplicatedBody part = replicate(zone_rev, lo, hi, keep);
-    if (k == 0) out.body.copies = part.copies;
-    append_zone(out.body, part, std::uint16_t(k), id_offset);
-    id_offset += std::int64_t(rev.spheres.size()) * part.copies[0] * part.copies[1] * part.copies[2];
+    const auto copies = replicate_into(out.body, zone_rev, boxes[k][0], boxes[k][1], keep, std::uint16_t(k), id_offset);
+    if (k == 0) out.body.copies = copies;
+    id_offset += std::int64_t(rev.spheres.size()) * copies[0] * copies[1] * copies[2];
   }
   double r_max = 0.0;
   for (const auto& s : out.body.spheres) r_max = std::max(r_max, s.radius);

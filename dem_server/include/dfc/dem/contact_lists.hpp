@@ -8,6 +8,7 @@
 // the pair loop, the rest in a gather; see Incidence). No atomics, no
 // thread-dependent summation order: results are bit-identical for any thread
 // count (CONTRIBUTING.md §11).
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -26,7 +27,7 @@ struct PairContacts {
   std::vector<std::uint32_t> second;
   std::size_t stride = 0;  ///< history doubles per contact (the law's history_size)
   /// size() * stride, row per contact. Left uninitialised when resized: a
-  /// rebuild writes every row in parallel (copy_matched_rows, restore_history).
+  /// rebuild writes every row in parallel (move_matched_rows, restore_history).
   UninitialisedDoubles history;
   /// The law's pair constants (contact_model.hpp HasPairConstants), row per
   /// contact of constants_stride doubles; every row set, in parallel, at
@@ -141,6 +142,24 @@ class HistoryArchive {
   [[nodiscard]] static HistoryArchive adopt(std::size_t stride, std::vector<Key> keys, std::vector<double> rows);
   /// Rows that are all zero are fresh contacts and are not kept.
   void add(Key key, const double* row);
+  /// Keeps the entries whose key `keep(key)` accepts, in insertion order,
+  /// compacted in place and sealed: the archive add() of those entries would
+  /// give, without holding the rows twice (the paper model's 0.4 GB).
+  template <class Keep>
+  void retain(Keep&& keep) {
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < keys_.size(); ++k) {
+      if (!keep(keys_[k])) continue;
+      if (kept != k) {  // kept < k: each row moves down onto one already moved or dropped
+        keys_[kept] = keys_[k];
+        std::copy_n(rows_.begin() + std::ptrdiff_t(k * stride_), stride_, rows_.begin() + std::ptrdiff_t(kept * stride_));
+      }
+      ++kept;
+    }
+    keys_.resize(kept);
+    rows_.resize(kept * stride_);
+    seal();
+  }
   /// Sorts the keys; call once after the last add().
   void seal();
   /// The row stored under `key`, or nullptr.
@@ -179,8 +198,13 @@ inline constexpr std::uint32_t no_previous_pair = 0xffffffffu;
                                                               int threads);
 
 /// Writes every row k of `pairs` (sized, its rows not yet written): row
-/// match[k] of `before`, or zeros where match[k] is no_previous_pair.
-void copy_matched_rows(const PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads);
+/// match[k] of `before`, or zeros where match[k] is no_previous_pair; then
+/// empties `before`. Its history is given back to the kernel 2 MiB at a time
+/// as soon as no row still to be written reads it (release_whole_units), so
+/// the old and the new history do not both exist whole: the rows of a
+/// model at rest come in nearly the same order after a rebuild, and the
+/// paper model's peak memory lost 0.4 GB (docs/dem_benchmarks.md, Memory).
+void move_matched_rows(PairContacts&& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads);
 
 [[nodiscard]] HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles);
 [[nodiscard]] HistoryArchive archive_history(const WallContacts& contacts, const ParticleStore& particles);

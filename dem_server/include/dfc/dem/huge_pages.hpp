@@ -16,6 +16,18 @@ namespace dfc::dem {
 /// such request (other systems) or when the kernel declines it.
 void advise_huge_pages(void* data, std::size_t bytes) noexcept;
 
+/// The size of the units advise_huge_pages and release_whole_units work in.
+inline constexpr std::size_t huge_page_bytes = std::size_t(2) << 20;
+
+/// Gives the whole 2 MiB units within [data, data + bytes) back to the kernel:
+/// their pages stop counting as resident, and read as zeros if touched
+/// again. For an array whose contents are no longer needed while the array
+/// still exists (a rebuild's previous history, move_matched_rows). The
+/// partial units at the ends are kept: they may hold other data (the
+/// allocator's own header before the first element). Does nothing where
+/// there is no such request (other systems).
+void release_whole_units(void* data, std::size_t bytes) noexcept;
+
 /// v.reserve(n), the new storage advised onto huge pages before anything
 /// touches it (a vector with room for n already keeps its pages).
 template <class T, class Allocator>

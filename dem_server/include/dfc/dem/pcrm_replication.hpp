@@ -59,4 +59,22 @@ struct ReplicatedBody {
 [[nodiscard]] ReplicatedBody replicate(const PreparedRev& rev, const Vec3& lo, const Vec3& hi, const std::function<bool(const GeneratedSphere&)>& keep,
                                        bool periodic = false);
 
+/// Copies of a REV cell `cell_length` long along x, y, z that tile the box [lo, hi] from lo.
+[[nodiscard]] std::array<int, 3> copies_to_cover(const Vec3& cell_length, const Vec3& lo, const Vec3& hi);
+
+/// replicate(rev, lo, hi, keep, periodic), appended to `body` (of the same
+/// stride) as material `material` with ids shifted by `id_offset`; returns
+/// this part's copies. Why appended in place: the zones of a graded body
+/// (pcrm_zones.hpp) went through a body of their own each, copied into the
+/// whole, and the paper model's 0.4 GB of rows then existed two and three
+/// times over (the largest part of its peak memory).
+std::array<int, 3> replicate_into(ReplicatedBody& body, const PreparedRev& rev, const Vec3& lo, const Vec3& hi,
+                                  const std::function<bool(const GeneratedSphere&)>& keep, std::uint16_t material, std::int64_t id_offset,
+                                  bool periodic = false);
+
+/// Room in `body` for `pairs` more pairs and `spheres` more spheres, so that
+/// appending them copies nothing. An upper bound costs address space, not
+/// memory: the pages no row reaches are never touched.
+void reserve_room(ReplicatedBody& body, std::size_t spheres, std::size_t pairs);
+
 }  // namespace dfc::dem
