@@ -36,6 +36,21 @@ TEST(BondPersistence, PairsWithinTheBondGapAreBondedAtStart) {
   EXPECT_EQ(apart.bond_counts().intact, 0);
 }
 
+TEST(BondPersistence, AfterBondsAreInstalledOnlyBondsAndPairsWithinTheSkinStayCandidates) {
+  // Installing bonds searches to 1.001 x the bond gap (100 um here), far
+  // beyond the 1 um skin. Spheres 7 and 3 are 50 um apart (bonded); 3 and 9
+  // 100.05 um, found by that search but beyond the bond gap (and its 2e-12 m
+  // round-off allowance): no bond, and beyond the skin, so no longer a
+  // candidate once the bonds are in, as at every later rebuild.
+  Simulation sim = two_spheres(pbond(1e12, 1e-4), 0.0);
+  sim.add_sphere(9, {0, 0, 4e-3 + 5e-5 + 1.0005e-4}, 1e-3, 2650);
+  sim.step(1e-9);
+  EXPECT_EQ(sim.bond_counts().intact, 1);
+  ASSERT_EQ(sim.pair_contacts().size(), 1u);
+  const auto& p = sim.particles();
+  EXPECT_EQ(p.id[sim.pair_contacts().first[0]] + p.id[sim.pair_contacts().second[0]], 10);  // the pair 3-7
+}
+
 /// Bonds installed in a touching simple cubic lattice of n^3 spheres of radius r.
 std::int64_t lattice_bonds(double r, int n) {
   Simulation sim(SimulationSettings{.particle_law = pbond(1e12, 0.0), .gravity = {}, .local_damping = 0.0, .skin = 0.1 * r, .threads = 1});

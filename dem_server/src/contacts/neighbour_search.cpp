@@ -136,10 +136,7 @@ void collect_pairs(const CellGrid& grid, const Space& space, const ParticleStore
   const auto n = static_cast<std::int64_t>(particles.size());
   const auto& x = particles.position;
   const auto& r = particles.radius;
-  const auto near = [&](std::uint32_t i, std::uint32_t j) {
-    const double reach = r[i] + r[j] + skin;
-    return norm2(space.branch(x[i], x[j])) < reach * reach;
-  };
+  const auto near = [&](std::uint32_t i, std::uint32_t j) { return within_skin(space.branch(x[i], x[j]), r[i], r[j], skin); };
   const auto neighbours = [&](std::uint32_t i, auto&& visit) { for_each_later_neighbour<Periodic>(grid, x[i], i, visit); };
   std::vector<std::uint32_t> offset(std::size_t(n) + 1, 0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads) if(n >= min_parallel_items)

@@ -226,6 +226,7 @@ void Simulation::rebuild() {
   assign_pair_laws();
   if (install) install_bonds(false);
   if (join) install_bonds(true);
+  if (search > skin_) drop_pairs_beyond_skin();
   compute_pair_constants();
   rss_trace("constants");
 
@@ -323,6 +324,31 @@ void Simulation::assign_pair_laws() {
     const auto k = std::size_t(i);
     pairs_.law_index[k] = std::uint16_t(materials_.pair_index(particles_.material[pairs_.first[k]], particles_.material[pairs_.second[k]]));
   }
+}
+
+void Simulation::drop_pairs_beyond_skin() {
+  const PeriodicSpace space = cell_ ? PeriodicSpace(*cell_) : PeriodicSpace();  // no cell: the plain difference
+  const bool laws = !pairs_.law_index.empty();
+  // Pair k moves to slot kept <= k: rows only ever move down, onto one already moved or dropped.
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::uint32_t i = pairs_.first[k], j = pairs_.second[k];
+    // A bond, intact or broken, stays a candidate however far apart (append_unmatched_bonds).
+    if (pairs_.row(k)[bond_state_column] == 0.0 &&
+        !within_skin(space.branch(particles_.position[i], particles_.position[j]), particles_.radius[i], particles_.radius[j], skin_))
+      continue;
+    if (kept != k) {
+      pairs_.first[kept] = i;
+      pairs_.second[kept] = j;
+      if (laws) pairs_.law_index[kept] = pairs_.law_index[k];
+      std::copy_n(pairs_.row(k), pairs_.stride, pairs_.row(kept));
+    }
+    ++kept;
+  }
+  pairs_.first.resize(kept);
+  pairs_.second.resize(kept);
+  if (laws) pairs_.law_index.resize(kept);
+  pairs_.history.resize(kept * pairs_.stride);
 }
 
 void Simulation::install_bonds(bool across_materials_only) {

@@ -51,6 +51,13 @@ struct CellGrid {
 [[nodiscard]] CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, const PeriodicCell& cell,
                                        std::vector<std::uint32_t>& order);
 
+/// Whether two spheres `branch` apart (centre to centre) are candidates:
+/// |branch| < r_i + r_j + skin, the test of find_pair_candidates.
+[[nodiscard]] inline bool within_skin(const Vec3& branch, double r_i, double r_j, double skin) noexcept {
+  const double reach = r_i + r_j + skin;
+  return norm2(branch) < reach * reach;
+}
+
 /// Candidate pairs (i < j by slot) with |x_i - x_j| < r_i + r_j + skin
 /// (the minimum image on a periodic grid's periodic axes).
 /// The particles must be in grid order. Output order: by i, then by the

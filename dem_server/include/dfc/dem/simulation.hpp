@@ -196,6 +196,12 @@ class Simulation {
   /// rebuild); with `across_materials_only`, only unbonded pairs of particles
   /// of different materials whose history is empty.
   void install_bonds(bool across_materials_only);
+  /// After a search beyond the skin (to install bonds or join the zones'
+  /// seams): drops the candidates a search to the skin would not have found
+  /// and that hold no bond (ever), as the next rebuild would. They carry
+  /// nothing, yet each step read their rows until then (the paper model:
+  /// 4.59 instead of 4.07 candidates per particle for its first ~270 steps).
+  void drop_pairs_beyond_skin();
   /// PairContacts::law_index for the new lists (more than one material).
   void assign_pair_laws();
   /// The particle law's pair constants for the new lists (contact_forces.cpp).
