@@ -87,11 +87,16 @@ class Calibrator:
         return e, record
 
 
-def calibrate(calibration, sample, base_contact, coupler, out, log=print):
+def print_now(line):
+    """A progress line, flushed: a calibration runs for minutes to hours, often with its output in a file."""
+    print(line, flush=True)
+
+
+def calibrate(calibration, sample, base_contact, coupler, out, log=print_now):
     started = time.monotonic()
     os.makedirs(out, exist_ok=True)
     cache = EvaluationCache(os.path.join(out, "cache"))
-    evaluator = Evaluator(calibration, sample, base_contact, cache, coupler, os.path.join(out, "runs"), log)
+    evaluator = Evaluator(calibration, sample, base_contact, cache, coupler, os.path.join(out, "runs"))
     run = Calibrator(calibration, evaluator, out, log)
     targets = calibration.targets
     start = {p.name: p.start for p in calibration.free}

@@ -54,14 +54,13 @@ def confinements(targets):
 class Evaluator:
     """Runs (or finds in the cache) the experiments of a parameter set."""
 
-    def __init__(self, calibration, sample, base_contact, cache, coupler, runs_folder, log=print):
+    def __init__(self, calibration, sample, base_contact, cache, coupler, runs_folder):
         self.calibration = calibration
         self.sample = sample
         self.base_contact = base_contact
         self.cache = cache
         self.coupler = coupler
         self.runs_folder = runs_folder
-        self.log = log
         self.dem_wall_s = 0.0
 
     def run_one(self, scenario):

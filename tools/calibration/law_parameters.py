@@ -36,7 +36,7 @@ class Parameter:
 
     def bounds_text(self):
         low = ("(" if self.lower_open else "[") + f"{self.lower:g}"
-        return f"{low}, {self.upper:g}] {self.unit}"
+        return f"{low}, {self.upper:g}]" + ("" if self.unit == "-" else f" {self.unit}")
 
 
 def declared_laws(schema_path=SCHEMA):
