@@ -5,6 +5,9 @@
 - bad calibration files fail with an error that names the key and the fix
   (unknown law, unknown parameter, a bound outside the law's declared bounds,
   missing targets, a target no experiment measures, too few packings);
+- what is read back from a periodic REV (UCS as the peak deviator, Young's
+  modulus, Poisson's ratio, a run without a peak) and the scenario of a
+  triaxial experiment on one packing;
 - the dimensionless scaling step (moduli, strengths, the damage bond's
   critical displacements, clipping to the bounds);
 - the cache key (one bit of one parameter changes it) and the log-derivatives;
@@ -37,6 +40,7 @@ import calibrate  # noqa: E402
 from calibration import scaling, sensitivity  # noqa: E402
 from calibration.calibration_file import CalibrationError, FreeParameter, read_targets  # noqa: E402
 from calibration.evaluation_cache import run_key  # noqa: E402
+from calibration.experiments import measure  # noqa: E402
 
 FAKE_COUPLER = os.path.join(HERE, "fake_coupler.py")
 
@@ -152,6 +156,48 @@ class Scaling(unittest.TestCase):
         self.assertEqual(out["ten_pa"], 1.5e6)                 # 3e6 clipped to the upper bound
         self.assertAlmostEqual(out["ucn_m"], 2e-5 * 1.5)        # b/a: the bond's ductility kept
         self.assertEqual(out["friction"], 0.5)                 # dimensionless: not scaled
+
+
+class Series:
+    def __init__(self, values):
+        self.values = values
+
+
+class Experiments(unittest.TestCase):
+    def test_the_periodic_revs_ucs_modulus_and_poisson_ratio(self):
+        import numpy as np
+        strain = np.linspace(0.0, 2e-3, 41)                     # the peak at sample 20, strain 1e-3
+        q = np.where(strain <= 1e-3, 1e9 * strain, 1e6 - 5e8 * (strain - 1e-3))
+        series = {"dem_cell_strain_zz": Series(strain), "dem_cell_stress_zz_pa": Series(q + 1e4),
+                  "dem_cell_stress_xx_pa": Series(np.full(41, 1e4)), "dem_cell_stress_yy_pa": Series(np.full(41, 1e4)),
+                  "dem_cell_strain_xx": Series(-0.25 * strain), "dem_cell_strain_yy": Series(-0.25 * strain)}
+        m = measure(series, periodic=True)
+        self.assertAlmostEqual(m["peak_pa"], 1e6)               # the deviator: sigma_3 taken off
+        self.assertAlmostEqual(m["young_modulus_pa"] / 1e9, 1.0)
+        self.assertAlmostEqual(m["poisson_ratio"], 0.25)
+        self.assertTrue(m["peak_reached"])
+        series["dem_cell_stress_zz_pa"] = Series(1e9 * strain)   # still rising at the end: no peak
+        self.assertFalse(measure(series, periodic=True)["peak_reached"])
+
+    def test_a_triaxial_experiment_of_a_periodic_sample(self):
+        spec = {"law": "damage_bond", "targets": {"triaxial_peak_deviator_pa": [{"confinement_pa": 3e5, "value": 1e6}]},
+                "sample": {"scenario": os.path.join(ROOT, "scenarios", "triaxial_damagebond_samecell.json"), "variant": "S4",
+                           "packings": [5, 6, 7]},
+                "free": {"ten_pa": {"start": 1e6, "min": 1e5, "max": 1e7}}}
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "c.json")
+            with open(path, "w") as f:
+                json.dump(spec, f)
+            calibration, sample, contact = calibrate.prepare(path)
+        self.assertTrue(sample.periodic)
+        self.assertEqual(contact["com_pa"], 5e7)                 # from the sample's contact block
+        scenario = sample.scenario_for(dict(contact, ten_pa=2e6), 6, 3e5)
+        dem = scenario["participants"]["dem"]["config"]
+        self.assertEqual((dem["particles"]["seed"], dem["threads"], dem["contact"]["ten_pa"]), (6, 1, 2e6))
+        self.assertEqual(dem["periodic"]["loading"]["stress_pa"], 3e5)
+        self.assertEqual(dem["periodic"]["consolidation"]["stress_pa"], 3e5)
+        self.assertEqual(dem["upscaling"]["scale_factor"], 4)    # the variant's patch applied
+        self.assertNotIn("variants", scenario)
 
 
 class CacheAndSensitivity(unittest.TestCase):
