@@ -2,6 +2,7 @@
 """Tests of ./vc calibrate (tools/calibrate.py, tools/calibration/) that run no DEM:
 
 - every file of scenarios/calibration/ passes the check;
+- ./vc calibrate --help, and the exit status of a bad file;
 - bad calibration files fail with an error that names the key and the fix
   (unknown law, unknown parameter, a bound outside the law's declared bounds,
   missing targets, a target no experiment measures, too few packings);
@@ -24,6 +25,7 @@ import json
 import math
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -136,6 +138,25 @@ class BadInput(Folder):
         spec["free"]["sb_coh_pa"]["start"] = 1e9
         self.assert_error(spec, "free.sb_coh_pa.start", "outside [min, max]")
         self.assert_error(softbond_file(tied={"sb_ten_pa": {"to": "sb_soft"}}), "tied.sb_ten_pa.to", "not a free parameter")
+
+
+class CommandLine(Folder):
+    def test_help_names_the_method(self):
+        result = subprocess.run([os.path.join(ROOT, "vc"), "calibrate", "--help"], stdout=subprocess.PIPE, text=True,
+                                env=dict(os.environ, VC_NO_INSTALL="1"))
+        self.assertEqual(result.returncode, 0)
+        for words in ("calibration", "scaling step", "Nelder-Mead", "--check", "cache"):
+            self.assertIn(words, result.stdout)
+
+    def test_a_bad_file_exits_2_with_the_key(self):
+        stderr = io.StringIO()
+        with contextlib.redirect_stderr(stderr):
+            status = calibrate.main([self.write(softbond_file(law="hertz")), "--check"])
+        self.assertEqual(status, 2)
+        self.assertIn("law: unknown bonded law 'hertz'", stderr.getvalue())
+        with contextlib.redirect_stdout(io.StringIO()) as stdout:
+            self.assertEqual(calibrate.main([self.write(softbond_file()), "--check"]), 0)
+        self.assertIn("OK", stdout.getvalue())
 
 
 class Scaling(unittest.TestCase):
