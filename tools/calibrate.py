@@ -93,68 +93,92 @@ def print_now(line):
 
 
 def calibrate(calibration, sample, base_contact, coupler, out, log=print_now):
+    """Steps 1-5 of the module's docstring; returns the summary (also written to OUT/summary.json)."""
     started = time.monotonic()
     os.makedirs(out, exist_ok=True)
     cache = EvaluationCache(os.path.join(out, "cache"))
     evaluator = Evaluator(calibration, sample, base_contact, cache, coupler, os.path.join(out, "runs"))
     run = Calibrator(calibration, evaluator, out, log)
-    targets = calibration.targets
-    start = {p.name: p.start for p in calibration.free}
 
-    # 1. The start.
-    _, record = run.evaluate(start, "start")
-    # 2. One dimensionless scaling step (calibration/scaling.py).
-    point = start
-    if calibration.scaling_step and not record["within_tolerance"]:
-        a, b = scaling.scale_factors(targets, record["means"])
-        point = scaling.scaled_start(calibration.law, calibration.free, start, a, b)
-        log(f"scaling step: moduli x {a:.3f}, strengths x {b:.3f}")
-        if point != start:
-            _, record = run.evaluate(point, "scaling")
-    # 3. Nelder-Mead on the rest, from the better of the two.
-    if not run.best[1]["within_tolerance"]:
-        def objective(values):
-            _, r = run.evaluate(values, "search")
-            if r["within_tolerance"]:
-                raise search.Converged()
-            return r["objective"]
-        search.nelder_mead(calibration.free, run.best[1]["parameters"], objective, calibration.max_evaluations - len(run.history))
-    best_evaluation, best = run.best
-    # 4. Sensitivity at the optimum.
-    names = [p.name for p in calibration.free]
+    start = {p.name: p.start for p in calibration.free}
+    first = run.evaluate(start, "start")[1]
+    take_scaling_step(run, first, log)
+    search_the_rest(run)
+    table = measure_sensitivity(run)
+    return write_outputs(run, cache, start, table, time.monotonic() - started)
+
+
+def take_scaling_step(run, first, log):
+    """2. Moduli and strengths multiplied by the factors the first evaluation asks for (calibration/scaling.py)."""
+    calibration = run.calibration
+    if not calibration.scaling_step or first["within_tolerance"]:
+        return
+    a, b = scaling.scale_factors(calibration.targets, first["means"])
+    point = scaling.scaled_start(calibration.law, calibration.free, first["parameters"], a, b)
+    log(f"scaling step: moduli x {a:.3f}, strengths x {b:.3f}")
+    if point != first["parameters"]:
+        run.evaluate(point, "scaling")
+
+
+def search_the_rest(run):
+    """3. Nelder-Mead from the best point so far, until every target is inside its tolerance."""
+    if run.best[1]["within_tolerance"]:
+        return
+
+    def objective(values):
+        _, record = run.evaluate(values, "search")
+        if record["within_tolerance"]:
+            raise search.Converged()
+        return record["objective"]
+    search.nelder_mead(run.calibration.free, run.best[1]["parameters"], objective,
+                       run.calibration.max_evaluations - len(run.history))
+
+
+def measure_sensitivity(run):
+    """4. {parameter: {target: d ln y / d ln p}} at the best point (empty when switched off)."""
+    calibration = run.calibration
+    if not calibration.sensitivity:
+        return {}
+    best = run.best[1]
     table = {}
-    if calibration.sensitivity:
-        for p in calibration.free:
-            moved = dict(best["parameters"])
-            moved[p.name] = sensitivity.step_for(p, best["parameters"][p.name], calibration.sensitivity_step)
-            _, r = run.evaluate(moved, "sensitivity")
-            table[p.name] = sensitivity.log_derivatives(targets, best["means"], r["means"], best["parameters"][p.name], moved[p.name])
-        outputs.write_sensitivity(out, targets, names, table)
-    # 5. Outputs.
+    for p in calibration.free:
+        moved = dict(best["parameters"])
+        moved[p.name] = sensitivity.step_for(p, best["parameters"][p.name], calibration.sensitivity_step)
+        _, record = run.evaluate(moved, "sensitivity")
+        table[p.name] = sensitivity.log_derivatives(calibration.targets, best["means"], record["means"],
+                                                    best["parameters"][p.name], moved[p.name])
+    outputs.write_sensitivity(run.out, calibration.targets, [p.name for p in calibration.free], table)
+    return table
+
+
+def write_outputs(run, cache, start, table, session_wall_s):
+    """5. material.json, summary.json/.md and history.png (history.json is written after every evaluation)."""
+    calibration, out = run.calibration, run.out
+    best_evaluation, best = run.best
     entries = {e["key"]: e for e in cache.entries()}
     used = {key for h in run.history for key in h["runs"]}  # this calibration's runs (the cache may hold others)
     summary = {
         "name": calibration.name, "law": calibration.law, "calibration_file": calibration.path,
         "sample": {"scenario": calibration.scenario_path, "variant": calibration.variant, "packings": calibration.packings},
         "converged": best["within_tolerance"], "start": start, "parameters": best["parameters"],
-        "achieved": outputs.achieved_table(targets, best_evaluation),
+        "achieved": outputs.achieved_table(calibration.targets, best_evaluation),
         "evaluations": len(run.history),
         "dem_runs": len(used), "dem_runs_this_session": cache.misses,
         "dem_wall_s": sum(entries[k]["wall_s"] for k in used),
-        "session_wall_s": time.monotonic() - started,
+        "session_wall_s": session_wall_s,
         "material": os.path.join(out, "material.json"),
-        "sensitivity": table, "warnings": sorted({w for w in best_evaluation.warnings}),
+        "sensitivity": table, "warnings": sorted(set(best_evaluation.warnings)),
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
     }
+    achieved = ", ".join(f"{r['target']} {r['value']:g} (achieved {r['mean']:.4g}, {r['min']:.4g}-{r['max']:.4g} "
+                         f"over {len(calibration.packings)} packings)" for r in summary["achieved"])
     comment = (f"Calibrated by ./vc calibrate {os.path.relpath(calibration.path, ROOT)} ({summary['date']}): law {calibration.law}, "
-               f"free {', '.join(names)}; targets " + ", ".join(f"{r['target']} {r['value']:g} (achieved {r['mean']:.4g}, "
-                                                               f"{r['min']:.4g}-{r['max']:.4g} over {len(calibration.packings)} packings)"
-                                                               for r in summary["achieved"]) +
-               f"; sample {os.path.relpath(calibration.scenario_path, ROOT)}. summary.json beside the calibration's output says more.")
+               f"free {', '.join(p.name for p in calibration.free)}; targets {achieved}; "
+               f"sample {os.path.relpath(calibration.scenario_path, ROOT)}. The calibration's summary.json has the history and sensitivities.")
     outputs.write_material(summary["material"], calibration.law, best_evaluation.contact, comment)
     outputs.write_json(os.path.join(out, "summary.json"), summary)
     outputs.write_summary_md(os.path.join(out, "summary.md"), summary)
-    outputs.plot_history(os.path.join(out, "history.png"), targets, run.history)
+    outputs.plot_history(os.path.join(out, "history.png"), calibration.targets, run.history)
     return summary
 
 
