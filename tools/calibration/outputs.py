@@ -7,7 +7,6 @@
   sensitivity.json/.md/.png   d ln(target) / d ln(parameter) at the optimum
 """
 import json
-import math
 import os
 
 import matplotlib
@@ -66,10 +65,13 @@ def plot_history(path, targets, history):
     ax1.set_ylabel("objective")
     ax1.legend(fontsize=8)
     for t in targets:
-        ax2.plot(index, [100 * t.relative_error(h["means"][t.name]) if math.isfinite(h["means"].get(t.name, float("nan")))
-                         else float("nan") for h in history], "o-", label=t.name)
+        # The mean's error, and the packings' min and max as the bar.
+        error = [100 * t.relative_error(h["scatter"][t.name]["mean"]) for h in history]
+        low = [e - 100 * t.relative_error(h["scatter"][t.name]["min"]) for e, h in zip(error, history)]
+        high = [100 * t.relative_error(h["scatter"][t.name]["max"]) - e for e, h in zip(error, history)]
+        ax2.errorbar(index, error, yerr=[low, high], fmt="o-", capsize=2, label=t.name)
         ax2.axhspan(-100 * t.tolerance, 100 * t.tolerance, alpha=0.08)
-    ax2.set_ylabel("error of the mean [%]")
+    ax2.set_ylabel("error of the mean [%]\n(bars: packings' min-max)")
     ax2.set_xlabel("evaluation (each: every experiment on every packing)")
     ax2.legend(fontsize=8)
     for h in history:
