@@ -7,6 +7,7 @@ packings, reported with its min and max (the scatter of the packings).
 """
 import json
 import os
+import shutil
 import subprocess
 import time
 from dataclasses import dataclass, field
@@ -47,8 +48,12 @@ def contact_for(base_contact, free_values, tied):
 
 def confinements(targets):
     """The experiments the targets need: 0.0 (unconfined) and every triaxial sigma_3."""
-    needed = sorted({t.confinement_pa for t in targets})
-    return needed
+    return sorted({t.confinement_pa for t in targets})
+
+
+# Which measured value (experiments.measure) each target quantity is.
+MEASURED_AS = {"ucs_pa": "peak_pa", "triaxial_peak_deviator_pa": "peak_pa",
+               "young_modulus_pa": "young_modulus_pa", "poisson_ratio": "poisson_ratio"}
 
 
 class Evaluator:
@@ -61,7 +66,6 @@ class Evaluator:
         self.cache = cache
         self.coupler = coupler
         self.runs_folder = runs_folder
-        self.dem_wall_s = 0.0
 
     def run_one(self, scenario):
         """The measured values of one scenario: from the cache, else by running the coupler."""
@@ -69,7 +73,8 @@ class Evaluator:
         if entry is not None:
             return entry, False
         folder = os.path.join(self.runs_folder, run_key(scenario))
-        os.makedirs(folder, exist_ok=True)
+        shutil.rmtree(folder, ignore_errors=True)   # what a killed calibration left of this run
+        os.makedirs(folder)
         path = os.path.join(folder, "scenario.json")
         with open(path, "w") as f:
             json.dump(scenario, f, indent=1)
@@ -77,7 +82,6 @@ class Evaluator:
         result = subprocess.run([self.coupler, "run", path, "--out", os.path.join(folder, "out"), "--no-progress"],
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         wall = time.monotonic() - start
-        self.dem_wall_s += wall
         if result.returncode != 0:
             raise RuntimeError(f"the DEM run {path} failed (exit {result.returncode}):\n{result.stdout[-3000:]}")
         with dfc_results.open_results(os.path.join(folder, "out", dfc_results.RESULTS_FILE)) as run:
@@ -100,6 +104,5 @@ class Evaluator:
                 for t in self.calibration.targets:
                     if t.confinement_pa != sigma3:
                         continue
-                    key = {"ucs_pa": "peak_pa", "triaxial_peak_deviator_pa": "peak_pa"}.get(t.quantity, t.quantity)
-                    values[t.name].append(float(m.get(key, float("nan"))))
+                    values[t.name].append(float(m.get(MEASURED_AS[t.quantity], float("nan"))))
         return evaluation
