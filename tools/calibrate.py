@@ -13,7 +13,8 @@ scenarios/calibration/ has examples), then
   3. searches the rest with Nelder-Mead on the logarithms of the free
      parameters until every target is inside its tolerance,
   4. measures the sensitivity d ln(target)/d ln(parameter) at the optimum,
-  5. writes material.json (for "contact": {"include": ...}), summary.json/.md
+  5. writes material.json (for "contact": {"include": ...}; a copy where
+     output.material says), summary.json/.md
      (achieved values with their scatter over the packings, DEM runs, wall
      time), history.json/.png and sensitivity.json/.md/.png into the output folder.
 Every DEM run is cached in OUT/cache by its scenario: run the same command
@@ -176,6 +177,9 @@ def write_outputs(run, cache, start, table, session_wall_s):
                f"free {', '.join(p.name for p in calibration.free)}; targets {achieved}; "
                f"sample {os.path.relpath(calibration.scenario_path, ROOT)}. The calibration's summary.json has the history and sensitivities.")
     outputs.write_material(summary["material"], calibration.law, best_evaluation.contact, comment)
+    if calibration.material_copy:
+        outputs.write_material(calibration.material_copy, calibration.law, best_evaluation.contact, comment)
+        summary["material_copy"] = calibration.material_copy
     outputs.write_json(os.path.join(out, "summary.json"), summary)
     outputs.write_summary_md(os.path.join(out, "summary.md"), summary)
     outputs.plot_history(os.path.join(out, "history.png"), calibration.targets, run.history)

@@ -265,7 +265,7 @@ class WholeCalibration(Folder):
             return int(f.read())
 
     def test_converges_writes_its_outputs_and_resumes_after_a_kill(self):
-        path = self.write(softbond_file())
+        path = self.write(softbond_file(output={"material": "materials/calibrated.json"}))
         out = os.path.join(self.folder, "out")
         with self.assertRaises(RuntimeError):      # killed after 10 runs: 3 evaluations and one run of the fourth
             self.run_calibration(path, out, fail_after=10)
@@ -283,6 +283,7 @@ class WholeCalibration(Folder):
         self.assertEqual([h["phase"] for h in history[:2]], ["start", "scaling"])
         self.assertEqual(summary["evaluations"], len(history))
         material = read_json(os.path.join(out, "material.json"))
+        self.assertEqual(read_json(os.path.join(self.folder, "materials", "calibrated.json")), material)
         self.assertEqual(material["law"], "soft_bond")
         self.assertEqual(material["sb_ten_pa"], material["sb_coh_pa"])   # tied
         self.assertEqual(material["sb_fa_deg"], 32)                      # fixed, from the sample

@@ -9,10 +9,11 @@
                  "young_modulus_pa": {...}, "poisson_ratio": {...},
                  "triaxial_peak_deviator_pa": [{"confinement_pa": 1e5, "value": 2e6, "tolerance": 0.05}]},
      "search":  {"max_evaluations": 40, "scaling_step": true, "sensitivity": true, "sensitivity_step": 0.1},
-     "output":  {"directory": "results/calibration/mine"}}
+     "output":  {"directory": "results/calibration/mine", "material": "../materials/mine.json"}}
 
 Paths are relative to the calibration file, except output.directory (relative to the
-working directory, like a scenario's). Every mistake is a CalibrationError
+working directory, like a scenario's). output.material (optional): a second copy of
+the calibrated material file, e.g. into scenarios/materials/ for scenarios to include. Every mistake is a CalibrationError
 that names the key path, says what is wrong and how to fix it (docs/calibration_automatic.md).
 """
 import json
@@ -83,6 +84,7 @@ class Calibration:
     sensitivity: bool = True
     sensitivity_step: float = 0.1
     output_directory: str = ""
+    material_copy: str = ""
     raw: dict = field(default_factory=dict)
 
 
@@ -204,6 +206,9 @@ def read_calibration(path):
         if key not in ("max_evaluations", "scaling_step", "sensitivity", "sensitivity_step"):
             raise CalibrationError(f"search.{key}", "unknown key", "use max_evaluations, scaling_step, sensitivity, sensitivity_step")
     output = _object(raw.get("output", {}), "output", '{"directory": "results/calibration/NAME"}')
+    for key in output:
+        if key not in ("directory", "material"):
+            raise CalibrationError(f"output.{key}", "unknown key", "use directory and material")
     name = raw.get("name", os.path.splitext(os.path.basename(path))[0])
     return Calibration(
         path=os.path.abspath(path), name=name, law=raw["law"], scenario_path=scenario_path,
@@ -211,7 +216,8 @@ def read_calibration(path):
         fixed=fixed, free=free, tied=tied, targets=read_targets(raw["targets"]),
         max_evaluations=int(search.get("max_evaluations", 40)), scaling_step=bool(search.get("scaling_step", True)),
         sensitivity=bool(search.get("sensitivity", True)), sensitivity_step=float(search.get("sensitivity_step", 0.1)),
-        output_directory=output.get("directory", os.path.join("results", "calibration", name)), raw=raw)
+        output_directory=output.get("directory", os.path.join("results", "calibration", name)),
+        material_copy=os.path.normpath(os.path.join(here, output["material"])) if "material" in output else "", raw=raw)
 
 
 def check_against_law(calibration, parameters):

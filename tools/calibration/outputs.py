@@ -27,6 +27,7 @@ def write_material(path, law, contact, comment):
     """The contact block in the layout of scenarios/materials/*.json."""
     material = {"_comment": comment, "law": law}
     material.update({k: v for k, v in sorted(contact.items()) if k != "law"})
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     write_json(path, material)
 
 
