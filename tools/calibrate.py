@@ -8,8 +8,9 @@ targets with tolerances, the sample scenario and its packings;
 scenarios/calibration/ has examples), then
   1. evaluates the start: every experiment the targets need on every packing
      (the DEM runs of ./vc run, through build/bin/coupler),
-  2. takes one dimensionless scaling step (moduli by E_target/E, strengths
-     by target/achieved peak; calibration/scaling.py),
+  2. takes a dimensionless scaling step (moduli by E_target/E, strengths
+     by target/achieved peak; calibration/scaling.py), and up to two more
+     with the exponents measured between the last two evaluations,
   3. searches the rest with Nelder-Mead on the logarithms of the free
      parameters until every target is inside its tolerance,
   4. measures the sensitivity d ln(target)/d ln(parameter) at the optimum,
@@ -103,22 +104,29 @@ def calibrate(calibration, sample, base_contact, coupler, out, log=print_now):
 
     start = {p.name: p.start for p in calibration.free}
     first = run.evaluate(start, "start")[1]
-    take_scaling_step(run, first, log)
+    take_scaling_steps(run, first, log)
     search_the_rest(run)
     table = measure_sensitivity(run)
     return write_outputs(run, cache, start, table, time.monotonic() - started)
 
 
-def take_scaling_step(run, first, log):
-    """2. Moduli and strengths multiplied by the factors the first evaluation asks for (calibration/scaling.py)."""
+def take_scaling_steps(run, first, log):
+    """2. Moduli and strengths multiplied by the factors the last evaluation asks for
+    (calibration/scaling.py): the dimensionless rules first, then the exponents measured
+    between the last two evaluations, while each step improves on the best."""
     calibration = run.calibration
-    if not calibration.scaling_step or first["within_tolerance"]:
-        return
-    a, b = scaling.scale_factors(calibration.targets, first["means"])
-    point = scaling.scaled_start(calibration.law, calibration.free, first["parameters"], a, b)
-    log(f"scaling step: moduli x {a:.3f}, strengths x {b:.3f}")
-    if point != first["parameters"]:
-        run.evaluate(point, "scaling")
+    previous, current, exponents = None, first, (1.0, 1.0)
+    for _ in range(calibration.scaling_steps):
+        if run.best[1]["within_tolerance"] or current is not run.best[1]:
+            return
+        if previous is not None:
+            exponents = scaling.measured_exponents(calibration.law, calibration.targets, previous, current)
+        a, b = scaling.scale_factors(calibration.targets, current["means"], exponents)
+        point = scaling.scaled_start(calibration.law, calibration.free, current["parameters"], a, b)
+        if point == current["parameters"]:
+            return
+        log(f"scaling step: moduli x {a:.3f}, strengths x {b:.3f} (exponents {exponents[0]:.2f}, {exponents[1]:.2f})")
+        previous, current = current, run.evaluate(point, "scaling")[1]
 
 
 def search_the_rest(run):

@@ -168,6 +168,17 @@ class Scaling(unittest.TestCase):
         self.assertAlmostEqual(a, 2.0)
         self.assertAlmostEqual(b, math.sqrt(2.0 * 4.0))   # geometric mean over the strength targets
 
+    def test_later_steps_use_the_measured_exponent(self):
+        targets = read_targets({"ucs_pa": {"value": 5e5}, "young_modulus_pa": {"value": 1e9}})
+        previous = {"parameters": {"sb_coh_pa": 9e5, "sb_emod_pa": 1e9}, "means": {"ucs_pa": 1.44e6, "young_modulus_pa": 1e9}}
+        ucs = 1.44e6 * (1 / 3) ** 1.5           # UCS ~ strength^1.5: the first step (x 1/3) undershoots
+        current = {"parameters": {"sb_coh_pa": 3e5, "sb_emod_pa": 1e9}, "means": {"ucs_pa": ucs, "young_modulus_pa": 1e9}}
+        n_modulus, n_strength = scaling.measured_exponents("soft_bond", targets, previous, current)
+        self.assertEqual(n_modulus, 1.0)         # the moduli did not move
+        self.assertAlmostEqual(n_strength, 1.5)
+        a, b = scaling.scale_factors(targets, current["means"], (n_modulus, n_strength))
+        self.assertAlmostEqual(ucs * b ** 1.5, 5e5)   # the secant step lands on the target
+
     def test_moduli_strengths_and_displacements(self):
         free = [FreeParameter("bond_emod_pa", 1e9, 1e7, 1e11), FreeParameter("ten_pa", 1e6, 1e4, 1.5e6),
                 FreeParameter("ucn_m", 2e-5, 1e-7, 1e-3), FreeParameter("friction", 0.5, 0.1, 1.0)]

@@ -8,7 +8,7 @@
      "targets": {"ucs_pa": {"value": 5e5, "tolerance": 0.03},
                  "young_modulus_pa": {...}, "poisson_ratio": {...},
                  "triaxial_peak_deviator_pa": [{"confinement_pa": 1e5, "value": 2e6, "tolerance": 0.05}]},
-     "search":  {"max_evaluations": 40, "scaling_step": true, "sensitivity": true, "sensitivity_step": 0.1},
+     "search":  {"max_evaluations": 40, "scaling_steps": 3, "sensitivity": true, "sensitivity_step": 0.1},
      "output":  {"directory": "results/calibration/mine", "material": "../materials/mine.json"}}
 
 Paths are relative to the calibration file, except output.directory (relative to the
@@ -80,7 +80,7 @@ class Calibration:
     tied: dict               # {name: (to, ratio)}
     targets: list
     max_evaluations: int = 40
-    scaling_step: bool = True
+    scaling_steps: int = 3
     sensitivity: bool = True
     sensitivity_step: float = 0.1
     output_directory: str = ""
@@ -203,8 +203,8 @@ def read_calibration(path):
     fixed = _object(raw.get("fixed", {}), "fixed", '{"NAME": value}')
     search = _object(raw.get("search", {}), "search", '{"max_evaluations": 40}')
     for key in search:
-        if key not in ("max_evaluations", "scaling_step", "sensitivity", "sensitivity_step"):
-            raise CalibrationError(f"search.{key}", "unknown key", "use max_evaluations, scaling_step, sensitivity, sensitivity_step")
+        if key not in ("max_evaluations", "scaling_steps", "sensitivity", "sensitivity_step"):
+            raise CalibrationError(f"search.{key}", "unknown key", "use max_evaluations, scaling_steps, sensitivity, sensitivity_step")
     output = _object(raw.get("output", {}), "output", '{"directory": "results/calibration/NAME"}')
     for key in output:
         if key not in ("directory", "material"):
@@ -214,7 +214,7 @@ def read_calibration(path):
         path=os.path.abspath(path), name=name, law=raw["law"], scenario_path=scenario_path,
         variant=sample.get("variant", ""), packings=packings, sample_patch=sample.get("patch", {}),
         fixed=fixed, free=free, tied=tied, targets=read_targets(raw["targets"]),
-        max_evaluations=int(search.get("max_evaluations", 40)), scaling_step=bool(search.get("scaling_step", True)),
+        max_evaluations=int(search.get("max_evaluations", 40)), scaling_steps=int(search.get("scaling_steps", 3)),
         sensitivity=bool(search.get("sensitivity", True)), sensitivity_step=float(search.get("sensitivity_step", 0.1)),
         output_directory=output.get("directory", os.path.join("results", "calibration", name)),
         material_copy=os.path.normpath(os.path.join(here, output["material"])) if "material" in output else "", raw=raw)

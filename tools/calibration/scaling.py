@@ -24,6 +24,14 @@ and the search (search.py) removes what remains.
 a = E_target / E_achieved, b = the geometric mean of target/achieved over the
 strength targets (UCS and triaxial peaks). A group is scaled only where the
 calibration frees one of its parameters and has a target it governs.
+
+Later steps (search.scaling_steps, default 3 in all) use the exponent measured
+between the last two evaluations instead of 1: where only the strengths are
+free, the strength-to-modulus ratio changes and the rule is no longer exact
+(the soft bond's UCS grew as its strengths^1.5 in the calibration of
+docs/calibration_automatic.md §4); with y ~ p^n, the factor (target/y)^(1/n)
+is a secant step in log-log space. The steps stop when an evaluation does
+not improve on the best one, and Nelder-Mead takes over.
 """
 import math
 
@@ -42,21 +50,52 @@ DISPLACEMENTS = {"damage_bond": ("ucn_m", "ucs_m")}
 STRENGTH_TARGETS = ("ucs_pa", "triaxial_peak_deviator_pa")
 
 
-def scale_factors(targets, achieved):
-    """(a, b): the modulus and strength factors from the achieved means {target name: value};
-    1.0 where no target governs the group."""
-    a = 1.0
-    logs = []
+EXPONENT_RANGE = (0.25, 4.0)   # a measured exponent outside this is noise, not a law
+
+
+def log_misfits(targets, achieved):
+    """(ln E_target/E, mean of ln target/y over the strength targets); None where no target governs."""
+    modulus, strengths = None, []
     for t in targets:
         value = achieved.get(t.name)
         if value is None or not value > 0:
             continue
         if t.quantity == "young_modulus_pa":
-            a = t.value / value
+            modulus = math.log(t.value / value)
         elif t.quantity in STRENGTH_TARGETS:
-            logs.append(math.log(t.value / value))
-    b = math.exp(sum(logs) / len(logs)) if logs else 1.0
-    return a, b
+            strengths.append(math.log(t.value / value))
+    return modulus, (sum(strengths) / len(strengths) if strengths else None)
+
+
+def scale_factors(targets, achieved, exponents=(1.0, 1.0)):
+    """(a, b): the modulus and strength factors from the achieved means {target name: value},
+    for responses y ~ p^n with n = exponents; 1.0 where no target governs the group."""
+    return tuple(1.0 if misfit is None else math.exp(misfit / n)
+                 for misfit, n in zip(log_misfits(targets, achieved), exponents))
+
+
+def group_log_change(law, before, after):
+    """(ln of the modulus group's factor, ln of the strength group's factor) between two
+    parameter sets, from the first free parameter of each group (0.0 where none is free)."""
+    out = []
+    for group in (MODULI.get(law, ()), STRENGTHS.get(law, ())):
+        names = [n for n in group if n in before]
+        out.append(math.log(after[names[0]] / before[names[0]]) if names else 0.0)
+    return tuple(out)
+
+
+def measured_exponents(law, targets, previous, current):
+    """(n_modulus, n_strength): d ln y / d ln p of each group between two evaluations
+    (records with "parameters" and "means"); 1.0 where a group did not move or no target governs it."""
+    exponents = []
+    for dp, y0, y1 in zip(group_log_change(law, previous["parameters"], current["parameters"]),
+                          log_misfits(targets, previous["means"]), log_misfits(targets, current["means"])):
+        if abs(dp) < 1e-3 or y0 is None or y1 is None:
+            exponents.append(1.0)
+            continue
+        n = (y0 - y1) / dp    # the misfit ln(target/y) falls by n dp
+        exponents.append(min(max(n, EXPONENT_RANGE[0]), EXPONENT_RANGE[1]))
+    return tuple(exponents)
 
 
 def scaled_start(law, free, values, a, b):
