@@ -1,13 +1,12 @@
-"""The dimensionless scaling step: one jump from a first evaluation to close to the targets.
+"""The dimensionless scaling steps: from the first evaluations to close to the targets.
 
 Why it works. Quasi-statically, a bonded assembly's macroscopic stresses divided
 by a modulus depend only on dimensionless groups: the ratios of the moduli
 (contact to bond, k_n/k_s), the strengths over the modulus, the critical
-displacements over the radius, friction, the packing (Potyondy & Cundall 2004,
-§2.5 and §3: "the macroscopic elastic constants are proportional to the
-effective moduli at fixed stiffness ratios"; the same argument for the soft
-bond, Itasca PFC 6 "Soft-Bond Model", and for the damage bond, Zheng &
-Ciantia 2025). Hence, approximately:
+displacements over the radius, friction, the packing (dimensional analysis;
+the calibration procedure of Potyondy & Cundall 2004 for the bonded-particle
+model rests on the same observation: the moduli set the elastic constants,
+the bond strengths the strength). Hence, approximately:
   - Young's modulus is proportional to the contact and bond moduli when all
     of them are multiplied by one factor a (the elastic response, before bonds
     break, does not see the strengths);
@@ -28,8 +27,8 @@ calibration frees one of its parameters and has a target it governs.
 Later steps (search.scaling_steps, default 3 in all) use the exponent measured
 between the last two evaluations instead of 1: where only the strengths are
 free, the strength-to-modulus ratio changes and the rule is no longer exact
-(the soft bond's UCS grew as its strengths^1.5 in the calibration of
-docs/calibration_automatic.md §4); with y ~ p^n, the factor (target/y)^(1/n)
+(the soft bond's UCS grew as its strengths^1.26 between the first two
+evaluations of the calibration in docs/calibration_automatic.md §4); with y ~ p^n, the factor (target/y)^(1/n)
 is a secant step in log-log space. The steps stop when an evaluation does
 not improve on the best one, and Nelder-Mead takes over.
 """
