@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """./vc calibrate: the contact parameters of a bonded law from a rock's target strengths and stiffness.
 
-    tools/calibrate.py CALIBRATION.json [--build DIR] [--out DIR] [--check]
+    tools/calibrate.py CALIBRATION.json [--build DIR] [--out DIR] [--jobs N] [--check]
 
 Reads the calibration file (the law, the free parameters with bounds, the
 targets with tolerances, the sample scenario and its packings;
@@ -94,12 +94,12 @@ def print_now(line):
     print(line, flush=True)
 
 
-def calibrate(calibration, sample, base_contact, coupler, out, log=print_now):
+def calibrate(calibration, sample, base_contact, coupler, out, log=print_now, jobs=1):
     """Steps 1-5 of the module's docstring; returns the summary (also written to OUT/summary.json)."""
     started = time.monotonic()
     os.makedirs(out, exist_ok=True)
     cache = EvaluationCache(os.path.join(out, "cache"))
-    evaluator = Evaluator(calibration, sample, base_contact, cache, coupler, os.path.join(out, "runs"))
+    evaluator = Evaluator(calibration, sample, base_contact, cache, coupler, os.path.join(out, "runs"), jobs)
     run = Calibrator(calibration, evaluator, out, log)
 
     start = {p.name: p.start for p in calibration.free}
@@ -201,6 +201,8 @@ def main(argv=None):
     parser.add_argument("--build", default=os.path.join(ROOT, "build"), help="the build folder with bin/coupler (default: ./build)")
     parser.add_argument("--out", help="output folder (default: the file's output.directory)")
     parser.add_argument("--check", action="store_true", help="check the file and stop")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="DEM runs at once, one thread each (default 1; the runs of an evaluation are independent)")
     args = parser.parse_args(argv)
     try:
         calibration, sample, base_contact = prepare(args.calibration)
@@ -216,7 +218,10 @@ def main(argv=None):
         print(f"calibrate: {coupler} not found: build first (./vc build) or give --build", file=sys.stderr)
         return 2
     out = os.path.abspath(args.out or calibration.output_directory)
-    summary = calibrate(calibration, sample, base_contact, coupler, out)
+    if args.jobs < 1:
+        print(f"calibrate: --jobs {args.jobs}: give at least 1", file=sys.stderr)
+        return 2
+    summary = calibrate(calibration, sample, base_contact, coupler, out, jobs=args.jobs)
     print(f"{'converged' if summary['converged'] else 'NOT converged'} after {summary['evaluations']} evaluations, "
           f"{summary['dem_runs']} DEM runs ({summary['dem_runs_this_session']} new), {summary['session_wall_s']:.0f} s; "
           f"{os.path.join(out, 'summary.md')}, material {summary['material']}")

@@ -13,8 +13,9 @@
   critical displacements, clipping to the bounds);
 - the cache key (one bit of one parameter changes it) and the log-derivatives;
 - the whole calibration against tests/python/fake_coupler.py (a closed-form
-  stand-in for the coupler): converges, writes every output, and a calibration
-  killed after some runs continues without rerunning any of them.
+  stand-in for the coupler): converges, writes every output, a calibration
+  killed after some runs continues without rerunning any of them, and runs
+  side by side (--jobs) give the same calibration.
 
     test_calibration.py        (CTest: exit code 77 = skipped when numpy, scipy, h5py or matplotlib are missing)
 """
@@ -254,14 +255,16 @@ class CacheAndSensitivity(unittest.TestCase):
 class WholeCalibration(Folder):
     """calibrate() against the closed-form stand-in: peak ~ coh^0.95 E^0.05, E ~ emod."""
 
-    def run_calibration(self, path, out, fail_after=None):
+    def run_calibration(self, path, out, fail_after=None, jobs=1):
         os.environ["FAKE_COUPLER_COUNT"] = os.path.join(self.folder, "count")
+        if jobs > 1:
+            del os.environ["FAKE_COUPLER_COUNT"]   # its counter file is not safe for runs side by side
         os.environ.pop("FAKE_COUPLER_FAIL_AFTER", None)
         if fail_after is not None:
             os.environ["FAKE_COUPLER_FAIL_AFTER"] = str(fail_after)
         calibration, sample, contact = calibrate.prepare(path)
         with contextlib.redirect_stdout(io.StringIO()):
-            return calibrate.calibrate(calibration, sample, contact, self.coupler(), out)
+            return calibrate.calibrate(calibration, sample, contact, self.coupler(), out, jobs=jobs)
 
     def coupler(self):
         """An executable that runs fake_coupler.py with this interpreter (the one with numpy and h5py)."""
@@ -308,6 +311,14 @@ class WholeCalibration(Folder):
         again = self.run_calibration(path, out)
         self.assertEqual(again["dem_runs_this_session"], 0)
         self.assertEqual(again["parameters"], summary["parameters"])
+
+    def test_runs_side_by_side_give_the_same_calibration(self):
+        path = self.write(softbond_file(search={"max_evaluations": 5, "sensitivity": False}))
+        one = self.run_calibration(path, os.path.join(self.folder, "one"))
+        two = self.run_calibration(path, os.path.join(self.folder, "two"), jobs=3)
+        self.assertEqual(one["parameters"], two["parameters"])
+        self.assertEqual(one["achieved"], two["achieved"])
+        self.assertEqual(one["dem_runs"], two["dem_runs"])
 
 
 if __name__ == "__main__":

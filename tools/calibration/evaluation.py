@@ -10,6 +10,7 @@ import os
 import shutil
 import subprocess
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -59,13 +60,14 @@ MEASURED_AS = {"ucs_pa": "peak_pa", "triaxial_peak_deviator_pa": "peak_pa",
 class Evaluator:
     """Runs (or finds in the cache) the experiments of a parameter set."""
 
-    def __init__(self, calibration, sample, base_contact, cache, coupler, runs_folder):
+    def __init__(self, calibration, sample, base_contact, cache, coupler, runs_folder, jobs=1):
         self.calibration = calibration
         self.sample = sample
         self.base_contact = base_contact
         self.cache = cache
         self.coupler = coupler
         self.runs_folder = runs_folder
+        self.jobs = jobs      # DEM runs at once (each one thread)
 
     def run_one(self, scenario):
         """The measured values of one scenario: from the cache, else by running the coupler."""
@@ -92,17 +94,19 @@ class Evaluator:
         contact = contact_for(self.base_contact, free_values, self.calibration.tied)
         values = {t.name: [] for t in self.calibration.targets}
         evaluation = Evaluation(dict(free_values), contact, values)
-        for sigma3 in confinements(self.calibration.targets):
-            for seed in self.calibration.packings:
-                entry, new = self.run_one(self.sample.scenario_for(contact, seed, sigma3))
-                evaluation.runs.append(entry["key"])
-                evaluation.new_runs += int(new)
-                m = entry["measured"]
-                if not m.get("peak_reached", True):
-                    evaluation.warnings.append(f"packing {seed}, sigma_3 {sigma3:g} Pa: the stress still rises at the last "
-                                               "point (no peak): lengthen the sample's run.exchanges")
-                for t in self.calibration.targets:
-                    if t.confinement_pa != sigma3:
-                        continue
+        experiments = [(sigma3, seed) for sigma3 in confinements(self.calibration.targets) for seed in self.calibration.packings]
+        scenarios = [self.sample.scenario_for(contact, seed, sigma3) for sigma3, seed in experiments]
+        # The runs are independent: side by side where jobs > 1, in the same order either way.
+        with ThreadPoolExecutor(max_workers=self.jobs) as pool:
+            results = list(pool.map(self.run_one, scenarios))
+        for (sigma3, seed), (entry, new) in zip(experiments, results):
+            evaluation.runs.append(entry["key"])
+            evaluation.new_runs += int(new)
+            m = entry["measured"]
+            if not m.get("peak_reached", True):
+                evaluation.warnings.append(f"packing {seed}, sigma_3 {sigma3:g} Pa: the stress still rises at the last "
+                                           "point (no peak): lengthen the sample's run.exchanges")
+            for t in self.calibration.targets:
+                if t.confinement_pa == sigma3:
                     values[t.name].append(float(m.get(MEASURED_AS[t.quantity], float("nan"))))
         return evaluation

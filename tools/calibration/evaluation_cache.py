@@ -13,6 +13,7 @@ written atomically (a run killed while writing leaves no half entry).
 import hashlib
 import json
 import os
+import threading
 
 
 def run_key(scenario):
@@ -28,6 +29,7 @@ class EvaluationCache:
         os.makedirs(folder, exist_ok=True)
         self.hits = 0
         self.misses = 0
+        self.lock = threading.Lock()   # the counters, when runs go side by side
 
     def path(self, key):
         return os.path.join(self.folder, key + ".json")
@@ -39,7 +41,8 @@ class EvaluationCache:
             return None
         with open(path) as f:
             entry = json.load(f)
-        self.hits += 1
+        with self.lock:
+            self.hits += 1
         return entry
 
     def put(self, scenario, measured, wall_s):
@@ -49,7 +52,8 @@ class EvaluationCache:
         with open(tmp, "w") as f:
             json.dump(entry, f, indent=1)
         os.replace(tmp, self.path(key))
-        self.misses += 1
+        with self.lock:
+            self.misses += 1
         return entry
 
     def entries(self):
