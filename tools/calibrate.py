@@ -117,7 +117,7 @@ def take_scaling_steps(run, first, log):
     calibration = run.calibration
     previous, current, exponents = None, first, (1.0, 1.0)
     for _ in range(calibration.scaling_steps):
-        if run.best[1]["within_tolerance"] or current is not run.best[1]:
+        if run.best[1]["within_tolerance"] or current is not run.best[1] or len(run.history) >= calibration.max_evaluations:
             return
         if previous is not None:
             exponents = scaling.measured_exponents(calibration.law, calibration.targets, previous, current)

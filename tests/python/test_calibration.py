@@ -312,6 +312,12 @@ class WholeCalibration(Folder):
         self.assertEqual(again["dem_runs_this_session"], 0)
         self.assertEqual(again["parameters"], summary["parameters"])
 
+    def test_max_evaluations_counts_the_scaling_steps(self):
+        path = self.write(softbond_file(search={"max_evaluations": 2, "sensitivity": False}))
+        summary = self.run_calibration(path, os.path.join(self.folder, "out"))
+        self.assertEqual(summary["evaluations"], 2)
+        self.assertFalse(summary["converged"])
+
     def test_runs_side_by_side_give_the_same_calibration(self):
         path = self.write(softbond_file(search={"max_evaluations": 5, "sensitivity": False}))
         one = self.run_calibration(path, os.path.join(self.folder, "one"))
