@@ -75,8 +75,8 @@ def plot_history(path, targets, history):
     ax2.set_ylabel("error of the mean [%]\n(bars: packings' min-max)")
     ax2.set_xlabel("evaluation (each: every experiment on every packing)")
     ax2.legend(fontsize=8)
-    for h in history:
-        if h["phase"] != "search":
+    for before, h in zip([None] + history[:-1], history):
+        if before is None or h["phase"] != before["phase"]:   # where each phase begins
             ax1.annotate(h["phase"], (h["evaluation"], max(h["objective"], 1e-6)), fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
