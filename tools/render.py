@@ -48,10 +48,8 @@ def has_pillow():
 
 
 def auto_renderer():
-    # matplotlib even where pvbatch is installed: tried with Debian's ParaView
-    # 5.11, the pvbatch slice keeps the continuum grid and walls but not the
-    # spheres (docs/looking_at_a_run.md); pvbatch on request only.
-    return "matplotlib"
+    """pvbatch where it is installed and can draw (an X display, or xvfb-run for a virtual one), else matplotlib."""
+    return "pvbatch" if PVBATCH and (os.environ.get("DISPLAY") or shutil.which("xvfb-run")) else "matplotlib"
 
 
 def run_folder(path):
@@ -88,15 +86,14 @@ def mean_stress_kpa(stress):
     return (stress[:, 0] + stress[:, 3] + stress[:, 5]) / 3.0 / 1e3
 
 
-# matplotlib -------------------------------------------------------------------
+class Section:
+    """What the section shows of one run's snapshots, whichever renderer draws
+    it: the colour of each sphere on one scale over the run, and the bonds
+    broken since the first snapshot near the plane."""
 
-class SectionFigure:
-    """Draws snapshots of one run on the same axes, limits and colour scale."""
-
-    def __init__(self, snapshots, colour, dpi):
+    def __init__(self, snapshots, colour):
         self.snapshots = snapshots
         self.colour = colour
-        self.dpi = dpi
         self.first = snapshots[0]
         self.first_position = {int(i): p for i, p in zip(self.first.arrays["particle_id"], self.first.arrays["particle_position"])}
         self.bonds_at_start = self.broken_pairs(self.first)  # broken before the first snapshot: not drawn red
@@ -108,6 +105,7 @@ class SectionFigure:
         everything = np.concatenate([s.arrays["particle_position"] for s in snapshots])
         reach = float(np.max(self.first.arrays["particle_radius"]))
         self.box = (everything[:, 0].min() - reach, everything[:, 0].max() + reach, everything[:, 2].min() - reach, everything[:, 2].max() + reach)
+        self.label = "mean stress (kPa, compression positive)" if colour == "stress" else "displacement since the first snapshot (mm)"
 
     def field(self, snap):
         if self.colour == "stress":
@@ -121,50 +119,67 @@ class SectionFigure:
         state = snap.arrays["bond_state"]
         return {(int(a), int(b)) for (a, b), s in zip(snap.arrays["bond_particle_id"], state) if s in BROKEN}
 
+    def broken_bonds(self, snap):
+        """The bonds near the plane broken since the first snapshot: an array of (centre a, centre b)."""
+        segments = []
+        if "bond_particle_id" in snap.arrays:
+            position, radius = snap.arrays["particle_position"], snap.arrays["particle_radius"]
+            row_of_id = {int(i): r for r, i in enumerate(snap.arrays["particle_id"])}
+            reach = float(np.max(radius))
+            for (a, b), s in zip(snap.arrays["bond_particle_id"], snap.arrays["bond_state"]):
+                if s not in BROKEN or (int(a), int(b)) in self.bonds_at_start:
+                    continue
+                pa, pb = position[row_of_id[int(a)]], position[row_of_id[int(b)]]
+                if abs(0.5 * (pa[1] + pb[1])) < reach:  # bonds near the plane
+                    segments.append((pa, pb))
+        return np.array(segments, dtype=float).reshape(-1, 2, 3)
+
+    def title(self, snap, broken):
+        return f"section y = 0, t = {snap.time:.4g} s (step {snap.step}); {broken} bonds broken since the start shown"
+
+
+# matplotlib -------------------------------------------------------------------
+
+class SectionFigure:
+    """Draws snapshots of one run on the same axes, limits and colour scale."""
+
+    def __init__(self, section, dpi):
+        self.section = section
+        self.dpi = dpi
+
     def draw(self, snap, path):
         import matplotlib.pyplot as plt
         from matplotlib.collections import LineCollection, PatchCollection
         from matplotlib.patches import Circle
 
+        section = self.section
         position, radius = snap.arrays["particle_position"], snap.arrays["particle_radius"]
         rows, cut = cut_spheres(position, radius, 0.0)
-        values = self.field(snap)[rows]
-        width = self.box[1] - self.box[0]
-        height = self.box[3] - self.box[2]
+        values = section.field(snap)[rows]
+        box = section.box
+        width = box[1] - box[0]
+        height = box[3] - box[2]
         fig, ax = plt.subplots(figsize=(7.0, max(3.0, 7.0 * height / width) + 0.6))
         circles = PatchCollection([Circle((position[r, 0], position[r, 2]), c) for r, c in zip(rows, cut)], cmap="viridis",
                                   edgecolors="none")
         circles.set_array(values)
-        circles.set_clim(*self.limits)
+        circles.set_clim(*section.limits)
         ax.add_collection(circles)
-        label = "mean stress (kPa, compression positive)" if self.colour == "stress" else "displacement since the first snapshot (mm)"
-        fig.colorbar(circles, ax=ax, label=label, shrink=0.8)
+        fig.colorbar(circles, ax=ax, label=section.label, shrink=0.8)
 
-        broken = 0
-        if "bond_particle_id" in snap.arrays:
-            state = snap.arrays["bond_state"]
-            row_of_id = {int(i): r for r, i in enumerate(snap.arrays["particle_id"])}
-            reach = float(np.max(radius))
-            segments = []
-            for (a, b), s in zip(snap.arrays["bond_particle_id"], state):
-                if s not in BROKEN or (int(a), int(b)) in self.bonds_at_start:
-                    continue
-                pa, pb = position[row_of_id[int(a)]], position[row_of_id[int(b)]]
-                if abs(0.5 * (pa[1] + pb[1])) < reach:  # bonds near the plane
-                    segments.append(((pa[0], pa[2]), (pb[0], pb[2])))
-            broken = len(segments)
-            if segments:
-                ax.add_collection(LineCollection(segments, colors=(1.0, 0.0, 0.0), linewidths=2.0, label="bond broken since the start"))
+        bonds = section.broken_bonds(snap)
+        if len(bonds):
+            ax.add_collection(LineCollection(bonds[:, :, [0, 2]], colors=(1.0, 0.0, 0.0), linewidths=2.0, label="bond broken since the start"))
         if "wall_facets" in snap.arrays:
             walls = cut_triangles(snap.arrays["wall_vertices"], snap.arrays["wall_facets"], 0.0)
             if len(walls):
                 ax.add_collection(LineCollection(walls, colors="black", linewidths=2.0, label="walls, pile, coupling surface"))
-        ax.set_xlim(self.box[0], self.box[1])
-        ax.set_ylim(self.box[2], self.box[3])
+        ax.set_xlim(box[0], box[1])
+        ax.set_ylim(box[2], box[3])
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
         ax.set_ylabel("z (m)")
-        ax.set_title(f"section y = 0, t = {snap.time:.4g} s (step {snap.step}); {broken} bonds broken since the start shown", fontsize=9)
+        ax.set_title(section.title(snap, len(bonds)), fontsize=9)
         if ax.collections[1:]:
             ax.legend(loc="lower right", fontsize=8)
         fig.tight_layout()
@@ -172,30 +187,43 @@ class SectionFigure:
         plt.close(fig)
 
 
-def render_matplotlib(run_dir, out, snapshot, colour, dpi):
-    import matplotlib
-    matplotlib.use("Agg")
+def load_section(run_dir, colour):
     import dfc_results
 
     with dfc_results.open_results(run_dir) as run:
         snapshots = run.snapshots("dem")
     if not snapshots:
         raise SystemExit(f"render: {run_dir} holds no DEM snapshots (run.snapshot_every)")
-    figure = SectionFigure(snapshots, colour, dpi)
+    return Section(snapshots, colour)
+
+
+def picture_paths(section, snapshot, out):
+    """(snapshot, PNG path) of each picture: every snapshot as frames, or the one asked for."""
     if snapshot is not None:
-        snap = snapshots[snapshot]
-        path = os.path.join(out, f"snapshot_{snap.index:06d}.png")
-        figure.draw(snap, path)
-        return [path]
-    paths = []
-    for snap in snapshots:
-        paths.append(os.path.join(out, f"frame_{snap.index:06d}.png"))
-        figure.draw(snap, paths[-1])
+        snap = section.snapshots[snapshot]
+        return [(snap, os.path.join(out, f"snapshot_{snap.index:06d}.png"))]
+    return [(snap, os.path.join(out, f"frame_{snap.index:06d}.png")) for snap in section.snapshots]
+
+
+def with_gif(paths, snapshot, out):
+    if snapshot is not None:
+        return paths
     if has_pillow():
-        paths.append(write_gif(paths, os.path.join(out, "run.gif")))
-    else:
-        print("render: python3-pil is not installed: frames only, no GIF (apt-get install python3-pil)")
+        return paths + [write_gif(paths, os.path.join(out, "run.gif"))]
+    print("render: python3-pil is not installed: frames only, no GIF (apt-get install python3-pil)")
     return paths
+
+
+def render_matplotlib(run_dir, out, snapshot, colour, dpi):
+    import matplotlib
+    matplotlib.use("Agg")
+
+    section = load_section(run_dir, colour)
+    figure = SectionFigure(section, dpi)
+    pictures = picture_paths(section, snapshot, out)
+    for snap, path in pictures:
+        figure.draw(snap, path)
+    return with_gif([path for _, path in pictures], snapshot, out)
 
 
 def write_gif(frames, path):
@@ -221,51 +249,157 @@ def write_gif(frames, path):
 # pvbatch ----------------------------------------------------------------------
 
 PVBATCH_SCRIPT = r'''
+# Drawn by pvbatch from results.xdmf: the spheres the plane y = 0 cuts, whole
+# by their radius and cut open by the plane; the walls and the pile where the
+# plane cuts them; the bonds broken since the first snapshot in red. The
+# colours, the broken bonds and the titles come from render.py (job.json:
+# the same Section as the matplotlib renderer draws).
+import json
 import sys
 from paraview.simple import *
-xdmf, out, first, last = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
-reader = XDMFReader(FileNames=[xdmf])
+
+job = json.load(open(sys.argv[1]))
+reader = XDMFReader(FileNames=[job["xdmf"]])
 reader.UpdatePipelineInformation()
 times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
+blocks = [name for name in ("dem_particles", "dem_walls")]
+
+
+def block(name):
+    return MergeBlocks(Input=ExtractBlock(Input=reader, Selectors=["/Root/" + name]))
+
+
+SPHERES = """
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonCore import vtkPoints
+frame = np.load(%r)
+x = np.asarray(inputs[0].Points)
+r = np.asarray(inputs[0].PointData["particle_radius_m"])
+ids = np.asarray(inputs[0].PointData["particle_id"]).astype(np.int64)
+keep = np.abs(x[:, 1]) < r
+row = np.clip(np.searchsorted(frame["ids"], ids[keep]), 0, len(frame["ids"]) - 1)
+points = vtkPoints()
+points.SetData(numpy_to_vtk(np.ascontiguousarray(x[keep]), deep=1))
+output.VTKObject.SetPoints(points)
+output.PointData.append(np.ascontiguousarray(r[keep]), "particle_radius_m")
+output.PointData.append(np.ascontiguousarray(frame["values"][row]), "colour")
+"""
+BONDS = """
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkLine
+bonds = np.load(%r)["bonds"].reshape(-1, 3)
+points = vtkPoints()
+points.SetData(numpy_to_vtk(np.ascontiguousarray(bonds), deep=1))
+lines = vtkCellArray()
+for k in range(0, len(bonds), 2):
+    line = vtkLine()
+    line.GetPointIds().SetId(0, k)
+    line.GetPointIds().SetId(1, k + 1)
+    lines.InsertNextCell(line)
+output.SetPoints(points)
+output.SetLines(lines)
+"""
+
 view = CreateRenderView()
 view.ViewSize = [1600, 1200]
 view.OrientationAxesVisibility = 0
-section = Slice(Input=reader)
-section.SliceType = "Plane"
-section.SliceType.Origin = [0.0, 0.0, 0.0]
-section.SliceType.Normal = [0.0, 1.0, 0.0]
-display = Show(section, view)
-ColorBy(display, ("POINTS", "particle_radius_m"))
-view.CameraPosition = [0.0, -1.0, 0.0]
+view.Background = [1.0, 1.0, 1.0]
+try:
+    view.UseColorPaletteForBackground = 0
+except AttributeError:
+    pass
+near = ProgrammableFilter(Input=block("dem_particles"))
+near.OutputDataSetType = "vtkPolyData"
+spheres = Glyph(Input=near, GlyphType="Sphere")
+spheres.ScaleArray = ["POINTS", "particle_radius_m"]
+spheres.ScaleFactor = 2.0  # the glyph's radius is 0.5
+spheres.GlyphMode = "All Points"
+spheres.GlyphType.ThetaResolution = 24
+spheres.GlyphType.PhiResolution = 24
+section = Clip(Input=spheres, ClipType="Plane")
+section.ClipType.Origin = [0.0, 0.0, 0.0]
+section.ClipType.Normal = [0.0, -1.0, 0.0]
+shown = Show(section, view)
+ColorBy(shown, ("POINTS", "colour"))
+lut = GetColorTransferFunction("colour")
+lut.ApplyPreset("Viridis (matplotlib)", True)
+lut.RescaleTransferFunction(job["limits"][0], job["limits"][1])
+lut.AutomaticRescaleRangeMode = "Never"
+bar = GetScalarBar(lut, view)
+bar.Title = job["label"]
+bar.ComponentTitle = ""
+bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
+shown.SetScalarBarVisibility(view, True)
+walls = Slice(Input=block("dem_walls"))
+walls.SliceType = "Plane"
+walls.SliceType.Origin = [0.0, 0.0, 0.0]
+walls.SliceType.Normal = [0.0, 1.0, 0.0]
+shown_walls = Show(walls, view)
+ColorBy(shown_walls, None)
+shown_walls.AmbientColor = shown_walls.DiffuseColor = [0.0, 0.0, 0.0]
+shown_walls.LineWidth = 3.0
+broken = ProgrammableSource()
+broken.OutputDataSetType = "vtkPolyData"
+title = Text()
+shown_title = Show(title, view)
+shown_title.Color = [0.0, 0.0, 0.0]
+shown_title.FontSize = 14
+shown_title.WindowLocation = "Upper Center"
+
+x0, x1, z0, z1 = job["box"]
+view.CameraParallelProjection = 1
+view.CameraFocalPoint = [0.5 * (x0 + x1), 0.0, 0.5 * (z0 + z1)]
+view.CameraPosition = [0.5 * (x0 + x1), -1.0, 0.5 * (z0 + z1)]
 view.CameraViewUp = [0.0, 0.0, 1.0]
-view.ResetCamera()
-for k in range(first, last):
-    view.ViewTime = times[k]
-    SaveScreenshot(out % k, view)
+view.CameraParallelScale = 0.55 * max(z1 - z0, (x1 - x0) * 1200.0 / 1600.0)
+shown_broken = None
+for frame in job["frames"]:
+    near.Script = SPHERES % frame["npz"]
+    broken.Script = BONDS % frame["npz"]
+    if shown_broken is None:
+        shown_broken = Show(broken, view)
+        shown_broken.AmbientColor = shown_broken.DiffuseColor = [1.0, 0.0, 0.0]
+        shown_broken.LineWidth = 3.0
+    title.Text = frame["title"]
+    view.ViewTime = times[frame["index"]]
+    SaveScreenshot(frame["png"], view)
+    near.UpdatePipeline(times[frame["index"]])
+    print("pvbatch: %s: %d spheres cut by the plane" % (frame["png"], near.GetDataInformation().GetNumberOfPoints()), flush=True)
 '''
 
 
-def render_pvbatch(run_dir, out, snapshot):
-    xdmf = os.path.join(run_dir, "results.xdmf")
-    import dfc_results
-    with dfc_results.open_results(run_dir) as run:
-        count = run.snapshot_count("dem")
-    first, last = (0, count) if snapshot is None else ((snapshot % count), (snapshot % count) + 1)
-    pattern = os.path.join(out, ("frame_%06d.png" if snapshot is None else "snapshot_%06d.png"))
-    with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as script:
-        script.write(PVBATCH_SCRIPT)
-    # Debian's ParaView renders through X (no offscreen OpenGL): without a
-    # display pvbatch aborts creating its window, so it runs in a virtual one.
-    command = [PVBATCH, script.name, xdmf, pattern, str(first), str(last)]
-    if not os.environ.get("DISPLAY"):
-        if shutil.which("xvfb-run") is None:
-            raise SystemExit("render.py: pvbatch needs an X display and there is none; install xvfb (xvfb-run) or use --renderer matplotlib")
-        command = ["xvfb-run", "-a"] + command
-    try:
+def render_pvbatch(run_dir, out, snapshot, colour):
+    import json
+
+    section = load_section(run_dir, colour)
+    pictures = picture_paths(section, snapshot, out)
+    with tempfile.TemporaryDirectory() as work:
+        frames = []
+        for snap, path in pictures:
+            order = np.argsort(snap.arrays["particle_id"])
+            npz = os.path.join(work, f"frame_{snap.index:06d}.npz")
+            bonds = section.broken_bonds(snap)
+            np.savez(npz, ids=np.asarray(snap.arrays["particle_id"])[order].astype(np.int64), values=section.field(snap)[order], bonds=bonds)
+            frames.append({"index": snap.index, "png": path, "npz": npz, "title": section.title(snap, len(bonds))})
+        job = os.path.join(work, "job.json")
+        with open(job, "w") as f:
+            json.dump({"xdmf": os.path.join(run_dir, "results.xdmf"), "frames": frames, "limits": section.limits, "label": section.label,
+                       "box": [float(v) for v in section.box]}, f)
+        script = os.path.join(work, "section.py")
+        with open(script, "w") as f:
+            f.write(PVBATCH_SCRIPT)
+        # Debian's ParaView renders through X (no offscreen OpenGL): without a
+        # display pvbatch aborts creating its window, so it runs in a virtual one.
+        command = [PVBATCH, script, job]
+        if not os.environ.get("DISPLAY"):
+            if shutil.which("xvfb-run") is None:
+                raise SystemExit("render.py: pvbatch needs an X display and there is none; install xvfb (xvfb-run) or use --renderer matplotlib")
+            command = ["xvfb-run", "-a"] + command
         subprocess.run(command, check=True)
-    finally:
-        os.unlink(script.name)
-    return [pattern % k for k in range(first, last)]
+    return with_gif([path for _, path in pictures], snapshot, out)
 
 
 def main(argv=None):
@@ -273,7 +407,7 @@ def main(argv=None):
         description="Pictures of a run: a vertical section through the pile axis (y = 0), spheres coloured by displacement "
                     "or stress, bonds broken since the start in red, walls and pile drawn; PNG frames and a GIF, or one "
                     "snapshot.",
-        epilog="--renderer auto uses matplotlib; pvbatch (ParaView's Python) is "
+        epilog="--renderer auto uses " + auto_renderer() + " here: pvbatch (ParaView's Python) is "
                + ("on PATH" if PVBATCH else "not on PATH")
                + ("; GIFs are written (python3-pil found)." if has_pillow() else "; no GIF: python3-pil is not installed, frames only.")
                + " docs/looking_at_a_run.md says what is drawn.")
@@ -283,7 +417,7 @@ def main(argv=None):
     parser.add_argument("--colour", choices=("displacement", "stress"), default="displacement",
                         help="sphere colour: displacement since the first snapshot (mm) or mean stress (kPa); default displacement")
     parser.add_argument("--renderer", choices=("auto", "matplotlib", "pvbatch"), default="auto",
-                        help="default auto: matplotlib (the pvbatch picture lacks the spheres so far)")
+                        help="default auto: pvbatch where installed (with an X display or xvfb-run), else matplotlib")
     parser.add_argument("--dpi", type=int, default=200, help="resolution of the PNGs (default 200, for print)")
     args = parser.parse_args(argv)
 
@@ -294,7 +428,7 @@ def main(argv=None):
     if renderer == "pvbatch":
         if not PVBATCH:
             raise SystemExit("render: --renderer pvbatch, but pvbatch (ParaView's Python) is not on PATH; use --renderer matplotlib")
-        paths = render_pvbatch(run_dir, out, args.snapshot)
+        paths = render_pvbatch(run_dir, out, args.snapshot, args.colour)
     else:
         paths = render_matplotlib(run_dir, out, args.snapshot, args.colour, args.dpi)
     for path in paths:

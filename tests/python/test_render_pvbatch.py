@@ -8,6 +8,7 @@ large and not a dependency of the project.
     test_render_pvbatch.py COUPLER SOURCE_DIR OUT_DIR
 """
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -30,8 +31,9 @@ shutil.rmtree(OUT, ignore_errors=True)
 run_dir = os.path.join(OUT, "run")
 subprocess.run([COUPLER, "run", os.path.join(SOURCE, "tests/e2e/scenarios/pile_short.json"), "--out", run_dir, "--no-progress"], check=True)
 pictures = os.path.join(OUT, "pictures")
-subprocess.run([sys.executable, os.path.join(SOURCE, "tools/render.py"), run_dir, "--snapshot", "-1", "--renderer", "pvbatch",
-                "--out", pictures], check=True)
+drawn = subprocess.run([sys.executable, os.path.join(SOURCE, "tools/render.py"), run_dir, "--snapshot", "-1", "--renderer", "pvbatch",
+                        "--out", pictures], check=True, capture_output=True, text=True).stdout
+print(drawn)
 png = [name for name in os.listdir(pictures) if name.endswith(".png")]
 if len(png) != 1:
     sys.exit(f"expected one PNG in {pictures}, found {png}")
@@ -39,4 +41,15 @@ image = matplotlib.image.imread(os.path.join(pictures, png[0]))
 colours = np.unique((image[..., :3] * 255).astype(np.uint8).reshape(-1, 3), axis=0)
 if len(colours) < 10:
     sys.exit(f"{png[0]} has {len(colours)} colours: blank")
-print(f"pvbatch drew {png[0]}: {image.shape[1]} x {image.shape[0]} pixels, {len(colours)} colours")
+# Every sphere the plane y = 0 cuts in the last snapshot is drawn (the first
+# pvbatch picture sliced the point cloud and showed none).
+sys.path.insert(0, os.path.join(SOURCE, "python"))
+import dfc_results  # noqa: E402
+
+with dfc_results.open_results(run_dir) as run:
+    last = run.snapshots("dem")[-1]
+expected = int(np.count_nonzero(np.abs(last.arrays["particle_position"][:, 1]) < last.arrays["particle_radius"]))
+match = re.search(r"(\d+) spheres cut by the plane", drawn)
+if match is None or int(match.group(1)) != expected or expected == 0:
+    sys.exit(f"pvbatch drew {match.group(1) if match else 'no'} spheres; the plane cuts {expected} in the last snapshot")
+print(f"pvbatch drew {png[0]}: {image.shape[1]} x {image.shape[0]} pixels, {len(colours)} colours, {expected} spheres cut by the plane")
