@@ -294,9 +294,10 @@ std::vector<std::string> Group::members() const {
   return names;
 }
 
-Dataset Group::create_extendable_f64(const std::string& name, hsize_t chunk_rows, hsize_t width) const {
+Dataset Group::create_extendable_f64(const std::string& name, hsize_t chunk_rows, hsize_t width, int deflate_level) const {
   silence_error_printing();
   if (width == 0) throw Error("dataset '" + name + "' needs a width of at least 1");
+  if (deflate_level < 0 || deflate_level > 9) throw Error("dataset '" + name + "': deflate level " + std::to_string(deflate_level) + " is not in 0..9");
   // A width-1 series stays 1-D: existing readers index it as a plain vector.
   const int rank = width == 1 ? 1 : 2;
   const hsize_t initial[] = {0, width};
@@ -305,6 +306,8 @@ Dataset Group::create_extendable_f64(const std::string& name, hsize_t chunk_rows
   const Handle space = make_handle(H5Screate_simple(rank, initial, maximum), H5Sclose, "cannot create an extendable dataspace");
   const Handle dcpl = make_handle(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create a dataset-creation property list");
   check(H5Pset_chunk(dcpl.get(), rank, chunk), "cannot set the chunk size of dataset '" + name + "'");
+  if (deflate_level > 0)
+    check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(deflate_level)), "cannot set the compression of dataset '" + name + "'");
   return Dataset(make_handle(H5Dcreate2(id(), name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
                              H5Dclose, "cannot create dataset '" + name + "' in " + object_name(id())));
 }

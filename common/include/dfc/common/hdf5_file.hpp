@@ -109,7 +109,8 @@ class Group {
   /// An initially empty f64 dataset of unlimited rows, chunked by `chunk_rows`
   /// (chunking is what lets it grow; the chunk size trades memory for I/O calls):
   /// 1-D for `width` 1, else [N, width] (e.g. 3 for a vector per row).
-  [[nodiscard]] Dataset create_extendable_f64(const std::string& name, hsize_t chunk_rows, hsize_t width = 1) const;
+  /// `deflate_level` > 0 compresses each chunk with deflate (zlib) at that level.
+  [[nodiscard]] Dataset create_extendable_f64(const std::string& name, hsize_t chunk_rows, hsize_t width = 1, int deflate_level = 0) const;
   /// A fixed-size dataset of `native_type` with `shape` (empty: scalar) holding `bytes`,
   /// whose size must be shape product × type size. `deflate_level` 0 stores it
   /// as given (contiguous); 1 to 9 stores it in chunks of whole rows (at most
