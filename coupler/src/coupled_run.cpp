@@ -116,8 +116,14 @@ ExchangeTiming choose_timing(const Scenario& scenario, Participant* dem, Partici
   return timing;
 }
 
-/// Bytes per particle in a snapshot (SPEC.md §6.4): position and velocity f64 [3], radius f64, id i64.
-constexpr double kSnapshotBytesPerParticle = (3 + 3 + 1 + 1) * 8.0;
+/// Bytes per particle of a DEM snapshot, a bound for what dem_server sends:
+/// the arrays SPEC.md §6.4 requires (position and velocity f64 [3], radius
+/// f64, id i64: 64 B) and what its "snapshot" block adds, the particle
+/// stress, bonds and contacts (measured on the bonded pile with every array,
+/// 3.9 bonds per particle: 533.7 B raw, docs/looking_at_a_run.md §4; the
+/// default contents 434.5 B). The required arrays alone understated a bonded
+/// model's snapshot eightfold.
+constexpr double kSnapshotBytesPerParticle = 540.0;
 
 /// MemAvailable of /proc/meminfo in bytes, or nullopt where it cannot be read.
 std::optional<double> available_memory_bytes() {
