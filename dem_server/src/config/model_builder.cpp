@@ -1,4 +1,3 @@
-#include "/tmp/rss_trace.hpp"
 #include "dfc/dem/model_builder.hpp"
 
 #include <algorithm>
@@ -94,22 +93,17 @@ void add_generated_body(DemModel& model, const DemConfig& c) {
   Simulation& sim = *model.simulation;
   PcrmConfig config = *c.particles.pcrm;
   config.rev.fraction_of_critical = c.timestep.fraction_of_critical;
-  rss_trace("before generate");
   model.generation = generate_pcrm(config, sim.settings(), c.gravity);
-  rss_trace("after generate");
   const ReplicatedBody& body = model.generation->body;
   for (std::size_t k = 0; k < body.spheres.size(); ++k)
     sim.add_sphere(body.id[k], body.spheres[k].centre, body.spheres[k].radius, c.particles.density, body.material[k]);
   // The simulation holds the spheres now; the rows move into its seed.
   sim.seed_pair_history(model.generation->body.release_into_archive(), true);  // `body` is empty from here on
-  rss_trace("seeded");
   if (!c.material_laws.empty()) sim.bond_across_materials_now();  // the seams between zones (pcrm_zones.hpp)
   const ParticleStore& p = sim.particles();
   if (c.pile)
     model.removed_particles = sim.remove_particles_before_start([&](std::size_t i) { return inside_pile({p.position[i], p.radius[i]}, c.pile->geometry); });
-  rss_trace("removed pile");
   for (const auto& wall : sim.walls()) model.removed_particles += fit_to_wall(sim, wall, config, *model.generation);
-  rss_trace("fit walls");
 }
 
 }  // namespace

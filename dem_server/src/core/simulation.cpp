@@ -1,4 +1,3 @@
-#include "/tmp/rss_trace.hpp"
 #include "dfc/dem/simulation.hpp"
 
 #include <algorithm>
@@ -165,7 +164,6 @@ void Simulation::check_cell_width(double reach) const {
 }
 
 void Simulation::rebuild() {
-  rss_trace("rebuild start");
   const double r_max = largest_radius(particles_);
   r_max_ = r_max;
   skin_ = settings_.skin > 0.0 ? settings_.skin : 0.2 * r_max;
@@ -195,7 +193,6 @@ void Simulation::rebuild() {
   const CellGrid grid = cell_ ? build_cell_grid(particles_.position, 2.0 * r_max + search, *cell_, order)
                               : build_cell_grid(particles_.position, 2.0 * r_max + search, order);
   particles_.permute(order, threads_);
-  rss_trace("permuted");
 
   // 3. New candidate lists, with the archived history.
   find_pair_candidates(grid, particles_, search, threads_, pairs_.first, pairs_.second);
@@ -207,13 +204,11 @@ void Simulation::rebuild() {
     if (particles_.id[pairs_.first[k]] > particles_.id[pairs_.second[k]]) std::swap(pairs_.first[k], pairs_.second[k]);
   }
   pairs_.stride = settings_.particle_law.history_size();
-  rss_trace("searched");
   if (by_slot) {
     std::vector<std::uint32_t> match = match_previous_pairs(previous, order, pairs_.first, pairs_.second, threads_);
     if (settings_.particle_law.bonded()) append_unmatched_bonds(previous, order, match);
     reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
     pairs_.history.resize(pairs_.size() * pairs_.stride);  // uninitialised: the threads write (and first touch) every row
-    rss_trace("matched");
     move_matched_rows(std::move(previous), match, pairs_, threads_);
   } else {
     if (settings_.particle_law.bonded()) append_persistent_pairs(*pair_archive);
@@ -222,13 +217,11 @@ void Simulation::rebuild() {
     restore_history(pairs_, particles_, *pair_archive, threads_);
     pair_archive.reset();  // its rows are in the lists now: not held through the rest of the rebuild
   }
-  rss_trace("history copied");
   assign_pair_laws();
   if (install) install_bonds(false);
   if (join) install_bonds(true);
   if (search > skin_) drop_pairs_beyond_skin();
   compute_pair_constants();
-  rss_trace("constants");
 
   bool with_couple = settings_.particle_law.has_couple();
   std::size_t offset = pairs_.size();
@@ -246,9 +239,7 @@ void Simulation::rebuild() {
   outputs_.resize(offset, with_couple, cell_ ? pairs_.size() : 0);
   // One range of the pair loop per thread where the loop runs in parallel.
   const std::size_t pair_chunks = std::int64_t(pairs_.size()) >= min_parallel_items ? std::size_t(threads_) : 1;
-  rss_trace("outputs");
   incidence_ = build_incidence(particles_.size(), pairs_, wall_lists, wall_offsets_, pair_chunks);
-  rss_trace("incidence");
 
   reference_positions_ = particles_.position;
   reference_vertices_.clear();

@@ -1,4 +1,3 @@
-#include "/tmp/rss_trace.hpp"
 #include "dfc/dem/pcrm_generation.hpp"
 
 #include <chrono>
@@ -53,7 +52,6 @@ GeneratedBody generate_pcrm(const PcrmConfig& config, const SimulationSettings& 
             << ", stress [" << out.rev.stress.x << ", " << out.rev.stress.y << ", " << out.rev.stress.z << "] Pa, " << out.rev.steps << " steps, "
             << out.rev_seconds << " s" << std::endl;
 
-  rss_trace("rev done");
   const auto t1 = std::chrono::steady_clock::now();
   if (config.zones.empty()) {
     out.body = replicate(out.rev, config.region, config.protrusion_fraction);
@@ -69,7 +67,6 @@ GeneratedBody generate_pcrm(const PcrmConfig& config, const SimulationSettings& 
     for (std::size_t k = 0; k < config.zones.size(); ++k) std::cerr << " S = " << config.zones[k].scale_factor << ": " << out.zone_spheres[k] << " spheres;";
     std::cerr << " at the seams " << out.seam_removed << " removed, " << out.seam_seated << " seated" << std::endl;
   }
-  rss_trace("replicated");
   out.profile = config.profile;
   out.profile.unit_weight = config.rev.density * (1.0 - out.rev.porosity) * g;
   out.reference_stress = out.rev.stress.z;
