@@ -119,7 +119,9 @@ def documented_scenarios():
     scenario's top level has ("schema_version", "participants", "include",
     "variants"), whatever its fence. Fragments of a section ("walls": [...])
     are not objects; an outline with elided sections is fenced as text, not
-    json, since it is not JSON."""
+    json, since it is not JSON. A calibration file (tools/calibrate.py: a
+    "law" and "targets" at its top level, docs/calibration_automatic.md) is
+    not a scenario; python.calibration checks those."""
     fence = re.compile(r"^([ \t]*)```(\w*)[ \t]*\n(.*?)^\1```", re.S | re.M)
     for page in [os.path.join(ROOT, "README.md")] + sorted(glob.glob(os.path.join(ROOT, "docs", "*.md"))):
         with open(page) as f:
@@ -131,6 +133,8 @@ def documented_scenarios():
                 value = json.loads(body)
             except ValueError:
                 value = None
+            if isinstance(value, dict) and {"law", "targets"} <= value.keys():
+                continue
             if language == "json" and body.lstrip().startswith("{"):
                 yield where, value
             elif isinstance(value, dict) and value.keys() & {"schema_version", "participants", "include", "variants"}:
