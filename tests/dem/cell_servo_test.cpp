@@ -119,6 +119,22 @@ TEST(CellServo, TriaxialHoldsTheConfiningStressWhileTheAxialEdgeShortens) {
   EXPECT_GT(m.at("porosity").get<double>(), 0.0);
 }
 
+TEST(PeriodicConfig, AZeroAxialStrainRateIsAConfigErrorNamingTheKey) {
+  // > 0 compresses, < 0 pulls (direct tension, e2e DirectTension); 0 would
+  // hold the axial edge still and never load the sample.
+  nlohmann::json c = rev_config();
+  c["periodic"]["loading"] = {{"mode", "triaxial"}, {"stress_pa", 0.0}, {"axial_strain_rate_per_s", 0.0}};
+  try {
+    (void)parse_dem_config(c);
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("periodic.loading.axial_strain_rate_per_s"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("direct tension"), std::string::npos) << e.what();
+  }
+  c["periodic"]["loading"]["axial_strain_rate_per_s"] = -1.0;
+  EXPECT_NO_THROW((void)parse_dem_config(c));
+}
+
 TEST(PeriodicConfig, TooNarrowACellIsAConfigErrorNamingTheKey) {
   nlohmann::json c = rev_config();
   c["periodic"]["max_m"] = {0.0064, 0.002, 0.0064};

@@ -43,7 +43,8 @@ import calibrate  # noqa: E402
 from calibration import scaling, sensitivity  # noqa: E402
 from calibration.calibration_file import CalibrationError, FreeParameter, read_targets  # noqa: E402
 from calibration.evaluation_cache import run_key  # noqa: E402
-from calibration.experiments import measure  # noqa: E402
+from calibration.evaluation import TENSION, UNCONFINED, experiments_needed, target_value  # noqa: E402
+from calibration.experiments import measure, measure_tension  # noqa: E402
 
 FAKE_COUPLER = os.path.join(HERE, "fake_coupler.py")
 
@@ -125,11 +126,13 @@ class BadInput(Folder):
         self.assert_error(softbond_file(targets={}), "targets", "nothing to calibrate against", "ucs_pa")
         self.assert_error(softbond_file(targets={"ucs_pa": {"tolerance": 0.03}}), "targets.ucs_pa.value", "missing target value")
 
-    def test_targets_no_experiment_measures(self):
-        self.assert_error(softbond_file(targets={"tensile_strength_pa": {"value": 1e5}}), "targets.tensile_strength_pa",
-                          "no Brazilian or direct-tension experiment", "remove it")
-        self.assert_error(softbond_file(targets={"poisson_ratio": {"value": 0.2}}), "targets.poisson_ratio",
-                          "needs a periodic REV sample", "ucs_upscaling.json")
+    def test_targets_the_sample_cannot_measure(self):
+        # Platens record no lateral strain, hold no confinement and cannot pull.
+        for quantity, value in (("poisson_ratio", 0.2), ("tensile_strength_pa", 1e5), ("tensile_to_compressive_ratio", 0.1)):
+            self.assert_error(softbond_file(targets={quantity: {"value": value}}), f"targets.{quantity}",
+                              "needs a periodic REV sample", "ucs_upscaling.json")
+        self.assert_error(softbond_file(targets={"tensile_strengh_pa": {"value": 1e5}}), "targets.tensile_strengh_pa",
+                          "unknown target", "tensile_strength_pa")
 
     def test_packings_free_and_tied(self):
         spec = softbond_file()
@@ -231,6 +234,40 @@ class Experiments(unittest.TestCase):
         self.assertEqual(dem["periodic"]["consolidation"]["stress_pa"], 3e5)
         self.assertEqual(dem["upscaling"]["scale_factor"], 4)    # the variant's patch applied
         self.assertNotIn("variants", scenario)
+
+
+    def test_the_tensile_strength_of_a_pulled_rev(self):
+        import numpy as np
+        strain = np.linspace(0.0, -2e-3, 41)                    # extension: compression-positive strain < 0
+        tension = np.where(strain >= -5e-4, -4e8 * strain, 2e5 - 1e8 * (-strain - 5e-4))
+        series = {"dem_cell_strain_zz": Series(strain), "dem_cell_stress_zz_pa": Series(-tension)}
+        m = measure_tension(series)
+        self.assertAlmostEqual(m["tensile_strength_pa"], 2e5)
+        self.assertAlmostEqual(m["strain_at_peak"], -5e-4)
+        self.assertTrue(m["peak_reached"])
+        series["dem_cell_stress_zz_pa"] = Series(4e8 * strain)  # the tension still rising at the end
+        self.assertFalse(measure_tension(series)["peak_reached"])
+
+    def test_tension_targets_pull_the_rev_and_the_ratio_is_taken_packing_by_packing(self):
+        spec = {"law": "soft_bond", "sample": {"scenario": os.path.join(ROOT, "scenarios", "ucs_upscaling.json"), "variant": "S2",
+                                               "packings": [1, 2, 3]},
+                "free": {"sb_ten_pa": {"start": 4e5, "min": 1e4, "max": 1e8}},
+                "targets": {"tensile_strength_pa": {"value": 1e5}, "tensile_to_compressive_ratio": {"value": 0.1},
+                            "ucs_pa": {"value": 1e6}}}
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, "c.json")
+            with open(path, "w") as f:
+                json.dump(spec, f)
+            calibration, sample, contact = calibrate.prepare(path)
+        self.assertEqual(experiments_needed(calibration.targets), [UNCONFINED, TENSION])   # each once
+        rate = sample.scenario["participants"]["dem"]["config"]["periodic"]["loading"]["axial_strain_rate_per_s"]
+        pulled = sample.scenario_for(contact, 2, 0.0, tension=True)["participants"]["dem"]["config"]["periodic"]["loading"]
+        self.assertEqual((pulled["axial_strain_rate_per_s"], pulled["stress_pa"]), (-abs(rate), 0.0))
+        pressed = sample.scenario_for(contact, 2, 0.0)["participants"]["dem"]["config"]["periodic"]["loading"]
+        self.assertEqual(pressed["axial_strain_rate_per_s"], rate)
+        measured = {UNCONFINED: {"peak_pa": 8e5}, TENSION: {"tensile_strength_pa": 1e5}}
+        values = {t.quantity: target_value(t, measured) for t in calibration.targets}
+        self.assertEqual(values, {"tensile_strength_pa": 1e5, "tensile_to_compressive_ratio": 0.125, "ucs_pa": 8e5})
 
 
 class CacheAndSensitivity(unittest.TestCase):

@@ -1,9 +1,11 @@
 """One evaluation: a parameter set, every experiment on every packing, averaged.
 
-The targets need at most 1 + (number of confinements) experiments (the
-unconfined test gives UCS, Young's modulus and Poisson's ratio at once), each
-run on every packing of the sample; the target's value is the mean over the
-packings, reported with its min and max (the scatter of the packings).
+The targets need at most 2 + (number of confinements) experiments (the
+unconfined test gives UCS, Young's modulus and Poisson's ratio at once; the
+pull, the tensile strength; the ratio of the two is taken packing by
+packing), each run on every packing of the sample; the target's value is the
+mean over the packings, reported with its min and max (the scatter of the
+packings).
 """
 import json
 import os
@@ -18,7 +20,7 @@ import numpy as np
 import dfc_results  # noqa: E402  (python/: the results reader)
 
 from .evaluation_cache import run_key
-from .experiments import measure
+from .experiments import measure, measure_tension
 
 
 @dataclass
@@ -47,14 +49,35 @@ def contact_for(base_contact, free_values, tied):
     return contact
 
 
-def confinements(targets):
-    """The experiments the targets need: 0.0 (unconfined) and every triaxial sigma_3."""
-    return sorted({t.confinement_pa for t in targets})
+# An experiment: (kind, sigma_3), kind "compression" (unconfined at sigma_3 0) or "tension".
+UNCONFINED = ("compression", 0.0)
+TENSION = ("tension", 0.0)
 
 
-# Which measured value (experiments.measure) each target quantity is.
-MEASURED_AS = {"ucs_pa": "peak_pa", "triaxial_peak_deviator_pa": "peak_pa",
-               "young_modulus_pa": "young_modulus_pa", "poisson_ratio": "poisson_ratio"}
+def experiments_for(target):
+    """The experiments a target reads."""
+    if target.quantity == "tensile_strength_pa":
+        return [TENSION]
+    if target.quantity == "tensile_to_compressive_ratio":
+        return [TENSION, UNCONFINED]
+    return [("compression", target.confinement_pa)]
+
+
+def experiments_needed(targets):
+    """Every experiment the targets need, each once, in a fixed order."""
+    return sorted({e for t in targets for e in experiments_for(t)})
+
+
+# Which measured value (experiments.measure, measure_tension) each target quantity is.
+MEASURED_AS = {"ucs_pa": "peak_pa", "triaxial_peak_deviator_pa": "peak_pa", "young_modulus_pa": "young_modulus_pa",
+               "poisson_ratio": "poisson_ratio", "tensile_strength_pa": "tensile_strength_pa"}
+
+
+def target_value(target, measured):
+    """A target's value on one packing from {experiment: measured values} of that packing."""
+    if target.quantity == "tensile_to_compressive_ratio":
+        return measured[TENSION].get("tensile_strength_pa", float("nan")) / measured[UNCONFINED].get("peak_pa", float("nan"))
+    return float(measured[experiments_for(target)[0]].get(MEASURED_AS[target.quantity], float("nan")))
 
 
 class Evaluator:
@@ -69,8 +92,9 @@ class Evaluator:
         self.runs_folder = runs_folder
         self.jobs = jobs      # DEM runs at once (each one thread)
 
-    def run_one(self, scenario):
-        """The measured values of one scenario: from the cache, else by running the coupler."""
+    def run_one(self, job):
+        """The measured values of one experiment (tension, scenario): from the cache, else by running the coupler."""
+        tension, scenario = job
         entry = self.cache.get(scenario)
         if entry is not None:
             return entry, False
@@ -87,26 +111,28 @@ class Evaluator:
         if result.returncode != 0:
             raise RuntimeError(f"the DEM run {path} failed (exit {result.returncode}):\n{result.stdout[-3000:]}")
         with dfc_results.open_results(os.path.join(folder, "out", dfc_results.RESULTS_FILE)) as run:
-            measured = measure(run.all_series(), self.sample.periodic)
+            measured = measure_tension(run.all_series()) if tension else measure(run.all_series(), self.sample.periodic)
         return self.cache.put(scenario, measured, wall), True
 
     def evaluate(self, free_values):
         contact = contact_for(self.base_contact, free_values, self.calibration.tied)
         values = {t.name: [] for t in self.calibration.targets}
         evaluation = Evaluation(dict(free_values), contact, values)
-        experiments = [(sigma3, seed) for sigma3 in confinements(self.calibration.targets) for seed in self.calibration.packings]
-        scenarios = [self.sample.scenario_for(contact, seed, sigma3) for sigma3, seed in experiments]
+        experiments = [(experiment, seed) for experiment in experiments_needed(self.calibration.targets) for seed in self.calibration.packings]
+        jobs = [(kind == "tension", self.sample.scenario_for(contact, seed, sigma3, tension=kind == "tension"))
+                for (kind, sigma3), seed in experiments]
         # The runs are independent: side by side where jobs > 1, in the same order either way.
         with ThreadPoolExecutor(max_workers=self.jobs) as pool:
-            results = list(pool.map(self.run_one, scenarios))
-        for (sigma3, seed), (entry, new) in zip(experiments, results):
+            results = list(pool.map(self.run_one, jobs))
+        measured = {seed: {} for seed in self.calibration.packings}
+        for ((kind, sigma3), seed), (entry, new) in zip(experiments, results):
             evaluation.runs.append(entry["key"])
             evaluation.new_runs += int(new)
-            m = entry["measured"]
-            if not m.get("peak_reached", True):
-                evaluation.warnings.append(f"packing {seed}, sigma_3 {sigma3:g} Pa: the stress still rises at the last "
+            measured[seed][(kind, sigma3)] = entry["measured"]
+            if not entry["measured"].get("peak_reached", True):
+                evaluation.warnings.append(f"packing {seed}, {kind} at sigma_3 {sigma3:g} Pa: the stress still rises at the last "
                                            "point (no peak): lengthen the sample's run.exchanges")
+        for seed in self.calibration.packings:
             for t in self.calibration.targets:
-                if t.confinement_pa == sigma3:
-                    values[t.name].append(float(m.get(MEASURED_AS[t.quantity], float("nan"))))
+                values[t.name].append(target_value(t, measured[seed]))
         return evaluation

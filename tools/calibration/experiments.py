@@ -5,7 +5,9 @@ Two kinds of sample (docs/calibrating.md):
 - a periodic REV (`periodic` block, `loading.mode` "triaxial"; e.g.
   scenarios/ucs_upscaling.json): unconfined compression with the lateral stress
   servo-held at 0 gives the UCS, Young's modulus and Poisson's ratio (the cell's
-  lateral strains), and the same REV at sigma_3 > 0 gives a triaxial peak;
+  lateral strains), the same REV at sigma_3 > 0 gives a triaxial peak, and the
+  same REV pulled along its axis (a negative axial strain rate, the lateral
+  stress held at 0: direct tension) gives the tensile strength;
 - a sample between platens (`ucs` block; e.g. scenarios/ucs_softbond.json):
   the UCS and Young's modulus only (no lateral strain is recorded).
 
@@ -20,7 +22,7 @@ import os
 
 import numpy as np
 
-from .calibration_file import CalibrationError
+from .calibration_file import PERIODIC_ONLY, CalibrationError
 
 import plot_results  # noqa: E402  (tools/: the initial stiffness that ./vc plot and ./vc report use)
 
@@ -99,9 +101,9 @@ class Sample:
         if self.periodic:
             return
         for t in targets:
-            if t.quantity in ("poisson_ratio", "triaxial_peak_deviator_pa"):
-                raise CalibrationError(f"targets.{t.quantity}", "needs a periodic REV sample (platens record no lateral strain "
-                                       "and hold no confinement)", "start from scenarios/ucs_upscaling.json, or remove the target")
+            if t.quantity in PERIODIC_ONLY:
+                raise CalibrationError(f"targets.{t.quantity}", "needs a periodic REV sample (platens record no lateral strain, "
+                                       "hold no confinement and cannot pull)", "start from scenarios/ucs_upscaling.json, or remove the target")
 
     def base_contact(self, law, fixed):
         """The law's parameters the sample gives (if it uses the same law), then the calibration's fixed values."""
@@ -109,8 +111,9 @@ class Sample:
         contact.update(fixed)
         return contact
 
-    def scenario_for(self, contact, seed, confinement_pa):
-        """The scenario of one experiment (unconfined if confinement_pa is 0) on one packing."""
+    def scenario_for(self, contact, seed, confinement_pa, tension=False):
+        """The scenario of one experiment (unconfined if confinement_pa is 0;
+        with `tension`, the REV pulled at the sample's axial strain rate) on one packing."""
         scenario = copy.deepcopy(self.scenario)
         dem = scenario["participants"]["dem"]["config"]
         dem["contact"] = contact
@@ -119,6 +122,8 @@ class Sample:
         if self.periodic:
             loading = dem["periodic"]["loading"]
             loading["stress_pa"] = confinement_pa
+            if tension:  # direct tension (docs/dem_periodic.md): the axial edge lengthens
+                loading["axial_strain_rate_per_s"] = -abs(loading["axial_strain_rate_per_s"])
             if confinement_pa > 0 and dem["periodic"].get("consolidation", {}).get("mode") == "isotropic":
                 # Consolidated to sigma_3 before bonding, as scenarios/triaxial_damagebond.json does.
                 dem["periodic"]["consolidation"]["stress_pa"] = confinement_pa
@@ -129,6 +134,16 @@ class Sample:
 def _column(series, name):
     s = series.get(name)
     return None if s is None else np.asarray(s.values, dtype=float)
+
+
+def measure_tension(series):
+    """The tensile strength of a pulled REV: its largest tension, minus the
+    smallest axial stress (compression positive), and whether it came before the end."""
+    axial = _column(series, "dem_cell_strain_zz")
+    tension = -_column(series, "dem_cell_stress_zz_pa")
+    n = min(len(axial), len(tension))
+    peak = int(np.argmax(tension[:n]))
+    return {"tensile_strength_pa": float(tension[peak]), "strain_at_peak": float(axial[peak]), "peak_reached": bool(peak < n - 1)}
 
 
 def measure(series, periodic):

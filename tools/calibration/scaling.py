@@ -21,7 +21,8 @@ after breakage and the change of the strain at the peak make them approximate,
 and the search (search.py) removes what remains.
 
 a = E_target / E_achieved, b = the geometric mean of target/achieved over the
-strength targets (UCS and triaxial peaks). A group is scaled only where the
+strength targets (UCS, triaxial peaks, tensile strength; the ratio of the
+tensile strength to the UCS does not change under b and is left to the search). A group is scaled only where the
 calibration frees one of its parameters and has a target it governs.
 
 Later steps (search.scaling_steps, default 3 in all) use the exponent measured
@@ -46,7 +47,7 @@ STRENGTHS = {
     "damage_bond": ("ten_pa", "coh_pa", "com_pa"),
 }
 DISPLACEMENTS = {"damage_bond": ("ucn_m", "ucs_m")}
-STRENGTH_TARGETS = ("ucs_pa", "triaxial_peak_deviator_pa")
+STRENGTH_TARGETS = ("ucs_pa", "triaxial_peak_deviator_pa", "tensile_strength_pa")
 
 
 EXPONENT_RANGE = (0.25, 4.0)   # a measured exponent outside this is noise, not a law

@@ -116,7 +116,9 @@ const SectionDeclaration& triaxial_cell_keys() {
       .name = "dem.cell_loading.triaxial",
       .doc = "a constant axial strain rate, the lateral edges held at sigma_3",
       .parameters = {P::number("stress_pa", "Pa", "sigma_3 (0: unconfined, the UCS of an REV)").at_least(0.0),
-                     P::number("axial_strain_rate_per_s", "1/s", "axial strain rate, compression > 0").positive(), axis()},
+                     P::number("axial_strain_rate_per_s", "1/s",
+                               "axial strain rate, not 0: > 0 compresses (triaxial compression, UCS), < 0 pulls (direct tension)"),
+                     axis()},
   };
   return s;
 }

@@ -38,6 +38,9 @@ CellLoading read_loading(ConfigReader& cfg) {
     l.mode = CellLoading::Mode::triaxial;
     l.stress = cfg.number("stress_pa");  // 0: unconfined (UCS of an REV)
     l.axial_rate = cfg.number("axial_strain_rate_per_s");
+    if (l.axial_rate == 0.0)
+      throw ConfigError(cfg.key_path("axial_strain_rate_per_s"),
+                        "is 0: give a positive rate to compress the cell (triaxial compression, an unconfined REV's UCS) or a negative one to pull it (direct tension)");
     l.axis = read_axis(cfg);
   }
   if (mode == "strain_rate") {

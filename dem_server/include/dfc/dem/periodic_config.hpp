@@ -23,7 +23,7 @@ struct CellLoading {
   std::size_t axis = 2;     ///< k0 / anisotropic / triaxial: the vertical or axial edge (0 x, 1 y, 2 z)
   double stress = 0.0;      ///< Pa, compression positive: p (isotropic), sigma_v (k0, anisotropic), sigma_3 (triaxial)
   double lateral_ratio = 1.0;  ///< -, anisotropic: sigma_h / sigma_v held on the two other edges (a K0 state)
-  double axial_rate = 0.0;  ///< 1/s, triaxial: compressive axial strain rate (> 0)
+  double axial_rate = 0.0;  ///< 1/s, triaxial: axial strain rate, > 0 compresses, < 0 pulls (direct tension)
   Vec3 strain_rate;         ///< 1/s, strain_rate mode: edge rates, extension positive
 };
 
