@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -19,12 +20,14 @@
 namespace dfc::testing {
 namespace {
 
-/// Sends SIGCONT and SIGKILL to the servers a test stopped, whatever the
-/// coupler did with them, so that nothing is left running or stopped.
-class ServerReaper {
+/// Sends SIGCONT and SIGKILL to the processes of a test (the coupler until it
+/// was waited for, the servers it started) whatever happened to them, so that
+/// nothing is left running or stopped when a check fails half-way.
+class ProcessReaper {
  public:
   void add(pid_t pid) { pids_.push_back(pid); }
-  ~ServerReaper() {
+  void forget(pid_t pid) { std::erase(pids_, pid); }
+  ~ProcessReaper() {
     for (const pid_t pid : pids_) {
       ::kill(pid, SIGCONT);
       ::kill(pid, SIGKILL);
@@ -47,11 +50,12 @@ void expect_stopped_server_found(const std::string& slot, const std::string& vic
   const auto scenario_file = dir / "pile.json";
   std::ofstream(scenario_file) << scenario.dump(2);
   const pid_t coupler_pid = start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, log);
+  ProcessReaper reaper;
+  reaper.add(coupler_pid);
 
   // The coupler prints its plan line before the first exchange.
   wait_for_exchanges(log);
   ::usleep(500'000);  // some exchanges done
-  ServerReaper reaper;
   pid_t victim = -1;
   for (const pid_t child : child_pids(coupler_pid)) {
     reaper.add(child);
@@ -62,6 +66,7 @@ void expect_stopped_server_found(const std::string& slot, const std::string& vic
 
   const auto stopped_at = std::chrono::steady_clock::now();
   const int status = wait_command(coupler_pid, std::chrono::seconds(30));
+  reaper.forget(coupler_pid);  // waited for: its pid is free again
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - stopped_at).count();
   const std::string output = read_text(log);
   EXPECT_LT(seconds, 15.0) << output;

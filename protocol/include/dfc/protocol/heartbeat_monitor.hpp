@@ -25,7 +25,8 @@ class HeartbeatMonitor {
   /// reply, or the client's own work, came just before).
   void begin_wait();
   /// Sends a ping when one is due (every second, or a quarter of the hang
-  /// timeout if that is shorter) and reads the pongs that arrived. Returns
+  /// timeout if that is shorter, from one interval into the wait) and reads
+  /// the pongs that arrived. Returns
   /// true while the server is alive: a pong to a ping of this wait came less
   /// than the hang timeout ago (or the wait is younger than that).
   [[nodiscard]] bool poll();
