@@ -28,6 +28,9 @@ HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& e
       hang_timeout_(std::max(hang_timeout, std::chrono::milliseconds(1))),
       interval_(std::clamp(hang_timeout_ / 4, std::chrono::milliseconds(1), kLongestInterval)) {
   configure_socket(socket_, heartbeat::message_limits());
+  // A ping never blocks the wait: to a server that reads none, pings pile up
+  // to the high-water mark and the next ones are dropped, not waited on.
+  socket_.set(zmq::sockopt::sndtimeo, 0);
   socket_.connect(endpoint);
 }
 
