@@ -215,7 +215,8 @@ std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& con
   std::vector<std::unique_ptr<Participant>> participants;
   for (const auto& spec : scenario.participants) {
     participants.push_back(
-        std::make_unique<Participant>(context, spec, log_dir, milliseconds_from_seconds(scenario.run.startup_timeout_s), stop));
+        std::make_unique<Participant>(context, spec, log_dir, milliseconds_from_seconds(scenario.run.startup_timeout_s),
+                                      milliseconds_from_seconds(scenario.run.hang_timeout_s), stop));
     participants.back()->hello(milliseconds(10'000));
   }
   const bool coupled = participants.size() == 2;

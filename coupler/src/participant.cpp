@@ -16,8 +16,8 @@ void StopRequest::check(const std::string& pending) {
 }
 
 Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-                         std::chrono::milliseconds startup_timeout, StopRequest& stop)
-    : spec_(spec), stop_(&stop) {
+                         std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop)
+    : spec_(spec), stop_(&stop), context_(&context), hang_timeout_(hang_timeout) {
   std::string endpoint = spec.endpoint;
   if (endpoint.empty()) {
     std::vector<std::string> args = spec.args;
@@ -62,7 +62,11 @@ void Participant::fail(const std::exception& error, const std::string& doing) {
   if (const auto* config = dynamic_cast<const ConfigError*>(&error)) throw *config;
   if (const auto* interrupted = dynamic_cast<const RunInterrupted*>(&error)) throw *interrupted;
   std::string message = "server " + label() + " failed while " + doing + ": " + error.what();
-  if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr)
+  if (const auto* hung = dynamic_cast<const protocol::HungError*>(&error)) {
+    hung_ = true;
+    message = "server " + label() + " stopped answering while " + doing + ": " + hung->silence() +
+              ". It is hung or stopped (SIGSTOP, a frozen node): a busy server still answers its heartbeat; run.hang_timeout_s sets how long the coupler waits";
+  } else if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr)
     message = "server " + label() + " did not answer while " + doing + " (" + error.what() +
               "); it is hung or too slow: raise run.deadline_s if it is only slow";
   if (const auto* remote = dynamic_cast<const protocol::RemoteError*>(&error))
@@ -76,6 +80,7 @@ void Participant::fail(const std::exception& error, const std::string& doing) {
 void Participant::hello(std::chrono::milliseconds deadline) {
   try {
     hello_ = client_->hello("coupler", deadline);
+    if (!hello_.heartbeat_endpoint.empty()) client_->connection().watch_heartbeat(*context_, hello_.heartbeat_endpoint, hang_timeout_);
   } catch (const std::exception& e) {
     fail(e, "greeting it (hello)");
   }
@@ -100,13 +105,14 @@ nlohmann::json Participant::configure(std::chrono::milliseconds deadline) {
 
 void Participant::stop() noexcept {
   try {
-    // Short limits: a server that hung already cost a whole deadline.
-    if (!process_ || !process_->exit_description()) client_->shutdown(std::chrono::milliseconds(1000));
+    // Short limits: a server that hung already cost a whole deadline; one
+    // that stopped answering its heartbeat would not answer shutdown either.
+    if (!hung_ && (!process_ || !process_->exit_description())) client_->shutdown(std::chrono::milliseconds(1000));
   } catch (...) {
     // It may already be gone; killing below is the fallback.
   }
   // After Ctrl-C the user is waiting: a server that does not exit at once is killed.
-  const auto grace = std::chrono::milliseconds(stop_->requested() ? 200 : 1000);
+  const auto grace = std::chrono::milliseconds(stop_->requested() || hung_ ? 200 : 1000);
   if (process_ && !process_->wait_exit(grace)) process_->kill();
 }
 

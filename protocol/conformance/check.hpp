@@ -21,6 +21,10 @@ struct Check {
   Milestone establishes = Milestone::none;  ///< reached when this check passes
   bool ping_after = true;  ///< then verify the server still answers ping (it kept running)
   void (*run)(Context& context) = nullptr;
+  /// The minor version (of major 1) the rule appeared in: a server that
+  /// declares an older one in hello_ok is not held to it (SKIP). 0: every
+  /// 1.x server. Only the checks of rules added from 1.6 on say so yet.
+  int since_minor = 0;
 };
 
 /// The server broke the contract; what() says how, in one sentence.
@@ -47,6 +51,7 @@ inline void expect(bool condition, const std::string& why) {
 // The groups the table is assembled from, one file each.
 [[nodiscard]] std::vector<Check> command_line_checks();
 [[nodiscard]] std::vector<Check> handshake_checks();
+[[nodiscard]] std::vector<Check> heartbeat_checks();
 [[nodiscard]] std::vector<Check> malformed_message_checks();
 [[nodiscard]] std::vector<Check> configure_checks();
 [[nodiscard]] std::vector<Check> interface_checks();

@@ -54,6 +54,8 @@ void hello_after_refusal_is_accepted(Context& context) {
   const protocol::Message reply = context.request(hello_request(protocol::version_string()));
   expect_type(reply, protocol::type::hello_ok);
   context.hello_reply = reply;
+  if (const auto version = protocol::parse_version(reply.body.value("protocol_version", std::string())))
+    context.declared_minor = version->second;
   // Learn what later checks need; hello_ok's field check reports malformed values.
   const auto& body = reply.body;
   const auto capabilities = body.value("capabilities", nlohmann::json::array());

@@ -38,6 +38,8 @@ class Context {
   [[nodiscard]] Subprocess& server();
   [[nodiscard]] bool server_started() const noexcept { return server_ != nullptr; }
   [[nodiscard]] const std::string& endpoint() const noexcept { return endpoint_; }
+  /// For connections of a check's own (the heartbeat's, SPEC.md §9.1).
+  [[nodiscard]] zmq::context_t& zmq_context() noexcept { return zmq_context_; }
 
   /// One request with the run's deadline; its seq is assigned by the connection.
   /// Returns error replies (never throws RemoteError). Throws TimeoutError or ServerGone.
@@ -72,6 +74,9 @@ class Context {
   std::vector<std::int64_t> provided_facets;  ///< [m, 3] of get_interface
   std::optional<std::int64_t> accepted_nodes;
   std::optional<protocol::Message> hello_reply;
+  /// The minor version hello_ok declares (protocol_version "1.N"); checks of
+  /// later rules are skipped (Check::since_minor). Unknown before hello_ok.
+  std::optional<int> declared_minor;
 
   // Bookkeeping of the runner.
   std::set<Milestone> reached;

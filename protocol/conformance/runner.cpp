@@ -28,6 +28,14 @@ std::optional<std::string> blocked(const Check& check, const Context& context) {
   return std::nullopt;
 }
 
+/// Why `check` does not apply to this server, if it does not: its rule came
+/// with a later minor version than the server declares (SPEC.md §1).
+std::optional<std::string> not_yet(const Check& check, const Context& context) {
+  if (check.since_minor == 0 || !context.declared_minor || *context.declared_minor >= check.since_minor) return std::nullopt;
+  return "a rule of protocol " + std::to_string(protocol::kVersionMajor) + "." + std::to_string(check.since_minor) +
+         "; the server declares " + std::to_string(protocol::kVersionMajor) + "." + std::to_string(*context.declared_minor);
+}
+
 /// One line per check, whatever the server sent.
 std::string one_line(std::string text) {
   for (char& c : text)
@@ -80,6 +88,8 @@ Tally run_checks(const std::vector<Check>& checks, Context& context, std::ostrea
     Result result;
     if (const auto reason = blocked(check, context)) {
       result = {Outcome::fail, *reason};
+    } else if (const auto skipped = not_yet(check, context)) {
+      result = {Outcome::skip, *skipped};
     } else {
       result = run_one(check, context);
       if (check.ping_after && !context.unavailable) ping_after(context, result);

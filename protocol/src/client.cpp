@@ -4,6 +4,7 @@
 
 #include "dfc/common/echo.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/protocol/heartbeat.hpp"
 #include "dfc/protocol/transport.hpp"
 
 namespace dfc::protocol {
@@ -21,16 +22,25 @@ std::string format_seconds(std::chrono::milliseconds duration) {
 }  // namespace
 
 Connection::Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits)
-    : socket_(context, zmq::socket_type::dealer), label_(std::move(label)), limits_(limits) {
+    : socket_(context, zmq::socket_type::dealer), endpoint_(endpoint), label_(std::move(label)), limits_(limits) {
   configure_socket(socket_, limits_);
   socket_.connect(endpoint);
+}
+
+void Connection::watch_heartbeat(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout) {
+  if (const auto problem = endpoint_problem(endpoint))
+    throw RemoteError("BAD_MESSAGE", label_ + " announced a heartbeat_endpoint that is no endpoint: " + *problem + " (SPEC.md §9.1)", "");
+  heartbeat_.emplace(context, heartbeat::connect_endpoint(endpoint, endpoint_), hang_timeout);
 }
 
 std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline) {
   const auto until = std::chrono::steady_clock::now() + deadline;
   skipped_reply_to_.clear();
+  if (heartbeat_) heartbeat_->begin_wait();
   while (true) {
     if (wait_hook_) wait_hook_();
+    if (heartbeat_ && !heartbeat_->poll())
+      throw HungError(label_, "no reply, and " + heartbeat_->silence_description());
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
     if (left.count() <= 0) return std::nullopt;
     auto frames = receive_frames(socket_, std::min(left, std::chrono::milliseconds(kSlice)));
@@ -97,6 +107,8 @@ SolverClient::Hello SolverClient::hello(const std::string& client_name, std::chr
     hello.protocol_version = body.at("protocol_version").get<std::string>();
     hello.role = body.at("role").get<std::string>();
     hello.capabilities = body.at("capabilities").get<std::vector<std::string>>();
+    if (const auto heartbeat = body.find(heartbeat::endpoint_key); heartbeat != body.end() && heartbeat->is_string())
+      hello.heartbeat_endpoint = heartbeat->get<std::string>();
   } catch (const nlohmann::json::exception& e) {
     throw RemoteError("BAD_MESSAGE", connection_.label() + " sent a hello_ok without the fields SPEC.md §4.1 requires: " + e.what(), "");
   }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <iostream>
 #include <string_view>
@@ -13,6 +14,8 @@
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/protocol/heartbeat.hpp"
+#include "dfc/protocol/heartbeat_responder.hpp"
 #include "dfc/protocol/server_session.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -37,7 +40,9 @@ void print_help(const ServerProgram& program) {
             << "       " << program.name << " --help | --version\n\n"
             << "A protocol v" << version_string() << " server (see protocol/SPEC.md). It binds a ZeroMQ ROUTER socket,\n"
             << "prints one line 'DFC-LISTENING <endpoint>' on stdout, and serves one client\n"
-            << "(normally the coupler) until it receives 'shutdown'. Diagnostics go to stderr.\n\n"
+            << "(normally the coupler) until it receives 'shutdown'. Diagnostics go to stderr.\n"
+            << "Beside it a second socket, the heartbeat, answers pings from a thread of its own,\n"
+            << "also while the server works (announced in hello_ok; SPEC.md section 9.1).\n\n"
             << "Options:\n"
             << "  --bind ENDPOINT        where to listen (default tcp://127.0.0.1:* = loopback, any free port)\n"
             << "  --idle-timeout S       exit with status 3 after S seconds without any message (default 3600; 0 = never)\n"
@@ -110,14 +115,35 @@ void print_advance_statistics(std::string_view name, const AdvanceStatistics& st
   std::cerr << "\n";
 }
 
+/// The heartbeat next to the main socket at `endpoint` (SPEC.md §9.1), for a
+/// server that declares 1.6 or later and listens where one can sit beside it.
+std::unique_ptr<HeartbeatResponder> start_heartbeat(zmq::context_t& context, const std::string& endpoint, const ServerProgram& program,
+                                                    const Liveness& liveness, const std::string& version) {
+  if (program.declared_minor < heartbeat::kSinceMinor || !program.heartbeat) return nullptr;
+  const auto bind = heartbeat::bind_endpoint(endpoint);
+  if (!bind) {
+    std::cerr << program.name << ": no heartbeat beside " << endpoint << " (only tcp, ipc and inproc endpoints have one)\n";
+    return nullptr;
+  }
+  return std::make_unique<HeartbeatResponder>(context, *bind, liveness, version);
+}
+
 int serve(const ServerProgram& program, const ServerOptions& options) {
   const auto backend = program.make_backend();
   ServerSession session(*backend, options.limits);
+  session.declare_minor(program.declared_minor);
   zmq::context_t context(1);
   zmq::socket_t socket(context, zmq::socket_type::router);
   configure_socket(socket, options.limits);
   socket.bind(options.bind);
-  std::cout << "DFC-LISTENING " << socket.get(zmq::sockopt::last_endpoint) << std::endl;
+  const std::string endpoint = socket.get(zmq::sockopt::last_endpoint);
+  // Declared after the context and the socket, so destroyed before them on
+  // every path out of here (return or exception): its thread stops and joins
+  // first, and the context's termination never waits for its socket.
+  Liveness liveness;
+  const auto heartbeat = start_heartbeat(context, endpoint, program, liveness, session.version());
+  if (heartbeat) session.set_heartbeat_endpoint(heartbeat->endpoint());
+  std::cout << "DFC-LISTENING " << endpoint << std::endl;
 
   const auto poll_slice = std::chrono::milliseconds(500);
   auto last_message = std::chrono::steady_clock::now();
@@ -138,12 +164,14 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
     const auto views = frame_views(*frames, 1);
     Message reply;
     const std::int64_t advances_before = session.advance_statistics().advances;
+    liveness.begin_request();
     try {
       reply = session.handle(decode(views, options.limits));
     } catch (const DecodeError& e) {
       reply = session.refuse_undecodable(e);
     }
     send_message(socket, reply, &routing_id);
+    liveness.end_request(session.step());
     if (session.advance_statistics().advances != advances_before)
       advance_service_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - last_message).count();
   }

@@ -11,6 +11,7 @@
 #include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/checkpoint_file.hpp"
+#include "dfc/protocol/heartbeat.hpp"
 
 namespace dfc::protocol {
 
@@ -65,6 +66,7 @@ Message ServerSession::reply_to(const Message& request, std::string_view type) {
   reply.type = std::string(type);
   reply.seq = next_seq_++;
   reply.reply_to = request.seq;
+  reply.version = version_;
   return reply;
 }
 
@@ -85,7 +87,7 @@ Message ServerSession::handle(const Message& request) {
     const auto version = parse_version(request.version);
     if (!version || version->first != kVersionMajor)
       throw ProtocolError(ErrorCode::version_mismatch, "the client speaks protocol " + request.version + " but this server speaks " +
-                                                           version_string() + "; major versions must be equal");
+                                                           version_ + "; major versions must be equal");
     reply = dispatch(request);
   } catch (const ProtocolError& e) {
     reply = make_error(request.seq, e.code(), e.what(), e.key());
@@ -103,13 +105,17 @@ Message ServerSession::handle(const Message& request) {
   } catch (const std::exception& e) {
     reply = make_error(request.seq, ErrorCode::internal, std::string("internal error: ") + e.what());
   }
-  if (reply.type == type::error) reply.seq = next_seq_++;
+  if (reply.type == type::error) {
+    reply.seq = next_seq_++;
+    reply.version = version_;
+  }
   return reply;
 }
 
 Message ServerSession::refuse_undecodable(const DecodeError& error) {
   Message reply = make_error(error.seq(), error.code(), error.what());
   reply.seq = next_seq_++;
+  reply.version = version_;
   return reply;
 }
 
@@ -129,14 +135,14 @@ Message ServerSession::dispatch(const Message& request) {
     state_ = SessionState::closed;
     return reply_to(request, type::bye);
   }
-  throw ProtocolError(ErrorCode::unknown_type, "unknown message type '" + echoed(request.type) + "' (protocol " + version_string() + ")");
+  throw ProtocolError(ErrorCode::unknown_type, "unknown message type '" + echoed(request.type) + "' (protocol " + version_ + ")");
 }
 
 Message ServerSession::on_hello(const Message& request) {
   require_state(request, {SessionState::fresh});
   const SolverIdentity id = backend_.identity();
   Message reply = reply_to(request, type::hello_ok);
-  reply.body = {{"protocol_version", version_string()},
+  reply.body = {{"protocol_version", version_},
                 {"solver", {{"name", id.name}, {"version", id.version}}},
                 {"role", id.role},
                 {"capabilities", id.capabilities},
@@ -144,6 +150,7 @@ Message ServerSession::on_hello(const Message& request) {
                  {{"max_header_bytes", limits_.max_header_bytes},
                   {"max_array_bytes", limits_.max_array_bytes},
                   {"max_arrays", limits_.max_arrays}}}};
+  if (!heartbeat_endpoint_.empty()) reply.body[heartbeat::endpoint_key] = heartbeat_endpoint_;
   state_ = SessionState::greeted;
   return reply;
 }

@@ -136,6 +136,26 @@ TEST(Scenario, DurationsStepsAndTimeStepsAreBounded) {
   EXPECT_EQ(with("coupling", "dt_s", 1e-7), "(no error)");
 }
 
+// Issue 42: run.hang_timeout_s, how long a server may answer neither its
+// request nor a heartbeat ping, is a declared key: 10 s by default, > 0, and
+// a bad value is refused naming the key.
+TEST(Scenario, HangTimeoutIsDeclaredPositiveAndTenSecondsByDefault) {
+  EXPECT_DOUBLE_EQ(parse_scenario(minimal(), "scenario.json", "").run.hang_timeout_s, 10.0);
+  auto d = minimal();
+  d["run"]["hang_timeout_s"] = 2.5;
+  EXPECT_DOUBLE_EQ(parse_scenario(d, "scenario.json", "").run.hang_timeout_s, 2.5);
+  for (const nlohmann::json& bad : {nlohmann::json(0), nlohmann::json(-1), nlohmann::json(1e10), nlohmann::json("10")}) {
+    d["run"]["hang_timeout_s"] = bad;
+    try {
+      (void)parse_scenario(d, "scenario.json", "");
+      ADD_FAILURE() << "hang_timeout_s " << bad.dump() << " was accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(e.key_path(), "run.hang_timeout_s") << bad.dump();
+      EXPECT_NE(std::string(e.what()).find("hang_timeout_s"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Scenario, NamesAndOutputFoldersThatWouldOverwriteInputsAreRefused) {
   auto d = minimal();
   for (const char* name : {"..", ".", "a/b", ""}) {

@@ -58,6 +58,11 @@ CommandResult run_command(const std::vector<std::string>& argv, std::chrono::mil
   return result;
 }
 
+void wait_for_exchanges(const std::filesystem::path& log) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (read_text(log).find("exchanges,") == std::string::npos && std::chrono::steady_clock::now() < until) ::usleep(50'000);
+}
+
 std::vector<pid_t> child_pids(pid_t parent) {
   std::vector<pid_t> children;
   for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(parent) + "/task")) {

@@ -24,6 +24,10 @@ int wait_command(pid_t pid, std::chrono::milliseconds timeout);
 /// start + wait + read the output.
 CommandResult run_command(const std::vector<std::string>& argv, std::chrono::milliseconds timeout);
 
+/// Waits until the coupler's output in `log` shows that the exchanges have
+/// begun (its plan line, "Run '...': N exchanges, ..."), at most 30 s.
+void wait_for_exchanges(const std::filesystem::path& log);
+
 /// Child processes of `parent` (from /proc), e.g. the servers a coupler started.
 std::vector<pid_t> child_pids(pid_t parent);
 /// The command line of `pid` (argv[0] only).

@@ -66,8 +66,7 @@ TEST(ProbedDefects, CtrlCEndsARunWithAHungServerWithinTwoSeconds) {
   const auto log = dir / "coupler.log";
   const pid_t coupler_pid =
       start_command({coupler(), "run", write_scenario(dir, scenario).string(), "--out", (dir / "out").string(), "--no-progress"}, log);
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (read_text(log).find("exchanges,") == std::string::npos && std::chrono::steady_clock::now() < until) ::usleep(50'000);
+  wait_for_exchanges(log);
   ::usleep(300'000);  // the first advance is now hanging
   ASSERT_EQ(::kill(coupler_pid, SIGINT), 0);
   const auto interrupted_at = std::chrono::steady_clock::now();

@@ -28,8 +28,7 @@ TEST(Supervision, KilledServerEndsRunAndResultsStayReadable) {
   const pid_t coupler_pid = start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, log);
 
   // Wait until the run is under way: the coupler prints its plan line before the first exchange.
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (read_text(log).find("exchanges,") == std::string::npos && std::chrono::steady_clock::now() < until) ::usleep(50'000);
+  wait_for_exchanges(log);
   ::usleep(700'000);  // let some exchanges complete
   pid_t victim = -1;
   for (const pid_t child : child_pids(coupler_pid))

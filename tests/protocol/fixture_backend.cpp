@@ -31,6 +31,7 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "huge-particle-count") return Breakage::huge_particle_count;
   if (name == "unsent-progress-monitor") return Breakage::unsent_progress_monitor;
   if (name == "malformed-progress-monitors") return Breakage::malformed_progress_monitors;
+  if (name == "no-heartbeat") return Breakage::no_heartbeat;
   return std::nullopt;
 }
 
@@ -41,6 +42,8 @@ SolverIdentity FixtureBackend::identity() const {
 nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
   ConfigReader config(section, "");
   const std::int64_t side = config.integer("side", 2, 2);
+  advance_seconds_ = config.number("advance_s", 0.0, Bounds{0.0, 60.0});
+  interface_ = config.boolean("interface", true);
   (void)config.vec3("gravity_m_s2", {0.0, 0.0, 0.0});  // added by the coupler to every section (SPEC.md §4.2); unused here
   config.finish();
   mesh_ = square_grid_mesh(side);
@@ -56,7 +59,9 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
     units["fixture_never_sent"] = unit::dimensionless;
   }
   const nlohmann::json listed = breakage_ == Breakage::malformed_progress_monitors ? nlohmann::json("kinetic_energy_j") : to_json(progress);
-  return {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}, {progress_monitors_key, listed}};
+  nlohmann::json info = {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}, {progress_monitors_key, listed}};
+  if (!interface_) info["capabilities"] = {capability::snapshot};  // uncoupled: a run of this server alone (SPEC.md §4.2)
+  return info;
 }
 
 AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
@@ -70,12 +75,17 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::nan_velocity:
     case Breakage::huge_particle_count:
     case Breakage::unsent_progress_monitor:
-    case Breakage::malformed_progress_monitors: break;
+    case Breakage::malformed_progress_monitors:
+    case Breakage::no_heartbeat: break;
   }
   if (request.dt > kDtMax) throw UnstableStepError("dt exceeds the fixture's stability limit", kDtMax);  // before anything changes
+  // A slow solver: the main thread is busy, the heartbeat thread answers (SPEC.md §9.1).
+  if (advance_seconds_ > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(advance_seconds_));
   const std::int64_t n = mesh_.node_count();
-  require_only(request.inputs, {field::force, field::mass}, "conformance_fixture_server");
-  const std::vector<double> force = require_f64(request.inputs, field::force, n, 3);
+  if (interface_) require_only(request.inputs, {field::force, field::mass}, "conformance_fixture_server");
+  else require_only(request.inputs, {}, "conformance_fixture_server");
+  const std::vector<double> force =
+      interface_ ? require_f64(request.inputs, field::force, n, 3) : std::vector<double>(static_cast<std::size_t>(3 * n), 0.0);
   std::vector<double> lumped(static_cast<std::size_t>(n), 0.0);
   if (find_array(request.inputs, field::mass) != nullptr) lumped = require_f64(request.inputs, field::mass, n, 0);
   // Explicit Euler per node; good enough for a protocol fixture.
@@ -96,6 +106,7 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
   if (breakage_ == Breakage::nan_velocity) velocity_.back() = std::numeric_limits<double>::quiet_NaN();
   AdvanceResult result;
   result.monitors = monitors_;
+  if (!interface_) return result;  // no interface, no outputs (SPEC.md §6.1)
   if (breakage_ == Breakage::wrong_output_shape) {
     result.outputs.push_back(Array::from_f64(field::velocity, {n, 2}, std::span(velocity_).first(static_cast<std::size_t>(2 * n))));
   } else {

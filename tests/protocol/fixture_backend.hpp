@@ -21,10 +21,11 @@ enum class Breakage {
   nan_velocity,        ///< advance returns a NaN in its velocity
   huge_particle_count,  ///< monitors claim 2e10 particles, more than any snapshot could hold
   unsent_progress_monitor,      ///< configure lists a progress monitor the server never sends
-  malformed_progress_monitors  ///< configure's info.progress_monitors is not an array
+  malformed_progress_monitors,  ///< configure's info.progress_monitors is not an array
+  no_heartbeat                  ///< declares the current minor but runs no heartbeat (SPEC.md §9.1)
 };
 
-/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors"; nullopt for anything else.
+/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors", "no-heartbeat"; nullopt for anything else.
 [[nodiscard]] std::optional<Breakage> breakage_from_name(std::string_view name) noexcept;
 
 class FixtureBackend final : public SolverBackend {
@@ -40,6 +41,8 @@ class FixtureBackend final : public SolverBackend {
 
  private:
   Breakage breakage_;
+  double advance_seconds_ = 0.0;  ///< section key advance_s: how long each advance takes (a slow solver)
+  bool interface_ = true;         ///< section key interface: false narrows the capabilities to snapshot (a run alone)
   InterfaceMesh mesh_;
   std::vector<double> velocity_;      ///< m/s, 3 per node
   std::vector<double> displacement_;  ///< m, 3 per node

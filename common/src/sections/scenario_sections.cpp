@@ -90,7 +90,12 @@ const SectionDeclaration& scenario_run() {
       .name = "scenario.run",
       .doc = "how long the run lasts and what it writes",
       .parameters = {P::integer("exchanges", "exchanges (or steps of a single server) to run").integer_within(1),
-                     P::number("deadline_s", "s", "longest wait for one reply of a server before it counts as hung").within(kWait).fallback(60.0),
+                     P::number("deadline_s", "s", "longest wait for one reply of a server, even one that answers its heartbeat, before it counts as hung").within(kWait).fallback(60.0),
+                     P::number("hang_timeout_s", "s",
+                               "a server that answers neither its request nor a heartbeat ping this long is hung, however long deadline_s "
+                               "(servers of protocol 1.6 on; SPEC.md §9.1)")
+                         .within(kWait)
+                         .fallback(10.0),
                      P::number("startup_timeout_s", "s", "longest wait for a server to start").within(kWait).fallback(20.0),
                      P::integer("snapshot_every", "exchanges between snapshots (0: first and last only)").integer_within(0).fallback(0),
                      P::integer("checkpoint_every", "exchanges between checkpoints for --resume (0: none but on Ctrl-C)").integer_within(0).fallback(0),

@@ -18,7 +18,7 @@
 
 namespace dfc::coupler {
 
-/// A participant died, hung, or broke the protocol. what() is the whole
+/// A participant died, hung (stopped answering), or broke the protocol. what() is the whole
 /// message for the user: which server, what happened, its last stderr lines.
 class ParticipantFailure : public std::runtime_error {
  public:
@@ -59,11 +59,13 @@ class StopRequest {
 class Participant {
  public:
   /// Starts the server (or connects to spec.endpoint). Server logs go to `log_dir`.
-  /// Every wait for it gives up through `stop` (which must outlive this).
+  /// Every wait for it gives up through `stop` (which must outlive this), and,
+  /// once it announced a heartbeat (SPEC.md §9.1), when it has answered
+  /// neither the request nor a ping for `hang_timeout` (run.hang_timeout_s).
   Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-              std::chrono::milliseconds startup_timeout, StopRequest& stop);
+              std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop);
 
-  /// hello, then checks the capability the slot needs (SPEC.md §4.1).
+  /// hello, then watches the heartbeat the server announced (none from a server before 1.6).
   void hello(std::chrono::milliseconds deadline);
   /// Sends the config section; a BAD_CONFIG reply becomes a dfc::ConfigError
   /// whose key path starts at the scenario root (participants.<slot>.config.<key>).
@@ -92,6 +94,9 @@ class Participant {
  private:
   ParticipantSpec spec_;
   StopRequest* stop_;
+  zmq::context_t* context_;
+  std::chrono::milliseconds hang_timeout_;
+  bool hung_ = false;  ///< it stopped answering: stop() kills it at once
   std::unique_ptr<ChildProcess> process_;
   std::unique_ptr<protocol::SolverClient> client_;
   protocol::SolverClient::Hello hello_;

@@ -46,6 +46,8 @@ struct CouplingSpec {
 struct RunSpec {
   std::int64_t exchanges = 1;    ///< number of exchanges (records) to run
   double deadline_s = 60.0;      ///< per request (SPEC.md §9)
+  /// a server that answers neither its request nor a heartbeat ping this long is hung (SPEC.md §9.1)
+  double hang_timeout_s = 10.0;
   double startup_timeout_s = 20; ///< for a started server to print DFC-LISTENING
   std::int64_t snapshot_every = 0;  ///< exchanges between snapshots; 0: initial and final only
   /// exchanges between coordinated checkpoints (docs/checkpoints.md); 0: none

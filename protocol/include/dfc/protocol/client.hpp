@@ -11,6 +11,7 @@
 #include <zmq.hpp>
 
 #include "dfc/protocol/codec.hpp"
+#include "dfc/protocol/heartbeat_monitor.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/solver_backend.hpp"
 
@@ -20,6 +21,19 @@ namespace dfc::protocol {
 class TimeoutError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// Neither a reply nor a heartbeat pong within the hang timeout (SPEC.md §9.1):
+/// the server is alive as a process, perhaps, but stopped or frozen.
+class HungError : public TimeoutError {
+ public:
+  /// what(): "<label> stopped answering: <silence>"; silence(): the heartbeat's account alone.
+  HungError(const std::string& label, std::string silence)
+      : TimeoutError(label + " stopped answering: " + silence), silence_(std::move(silence)) {}
+  [[nodiscard]] const std::string& silence() const noexcept { return silence_; }
+
+ private:
+  std::string silence_;
 };
 
 /// The server answered with an `error` message.
@@ -45,6 +59,12 @@ class Connection {
   using WaitHook = std::function<void()>;
   void set_wait_hook(WaitHook hook) { wait_hook_ = std::move(hook); }
 
+  /// From now on every wait pings the server's heartbeat at `endpoint` (SPEC.md
+  /// §9.1) and ends with HungError once a ping has gone unanswered for
+  /// `hang_timeout` while no reply came. Without it only the deadline applies.
+  void watch_heartbeat(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout);
+  [[nodiscard]] bool heartbeat_watched() const noexcept { return heartbeat_.has_value(); }
+
   /// Sends `request` (its seq is assigned here) and returns the reply with the
   /// matching reply_to; stale replies to earlier, abandoned requests are skipped.
   /// Throws TimeoutError, or RemoteError when the reply is an `error`.
@@ -62,6 +82,8 @@ class Connection {
   std::optional<Message> await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline);
 
   zmq::socket_t socket_;
+  std::string endpoint_;
+  std::optional<HeartbeatMonitor> heartbeat_;
   std::string label_;
   Limits limits_;
   std::int64_t next_seq_ = 1;
@@ -83,6 +105,7 @@ class SolverClient {
     std::string protocol_version;
     std::string role;
     std::vector<std::string> capabilities;
+    std::string heartbeat_endpoint;  ///< 1.6 (SPEC.md §9.1); empty when the server announces none
     [[nodiscard]] bool has(std::string_view capability) const;
   };
   Hello hello(const std::string& client_name, std::chrono::milliseconds deadline);

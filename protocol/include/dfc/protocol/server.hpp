@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "dfc/protocol/message.hpp"
 #include "dfc/protocol/solver_backend.hpp"
 
 namespace dfc::protocol {
@@ -16,11 +17,19 @@ struct ServerProgram {
   /// Reads a configure section without building the model (--check-config):
   /// throws ConfigError naming the key for bad input.
   std::function<void(const nlohmann::json& section)> check_config;
+  /// The minor protocol version the server declares (hello_ok, every reply).
+  /// A server declaring 1.6 or later runs a heartbeat (SPEC.md §9.1). Only a
+  /// test fixture playing an older server sets less than kVersionMinor.
+  int declared_minor = kVersionMinor;
+  /// Whether a server declaring 1.6 or later runs its heartbeat; false only in
+  /// a test fixture that breaks that rule on purpose.
+  bool heartbeat = true;
 };
 
 /// main() of every server: parses --bind/--help/--version/--check-config, binds a ROUTER
-/// socket, prints "DFC-LISTENING <endpoint>" on stdout and serves one session
-/// until shutdown. Returns the process exit status.
+/// socket (and, beside it, the heartbeat's, served by a thread of its own),
+/// prints "DFC-LISTENING <endpoint>" on stdout and serves one session until
+/// shutdown. Returns the process exit status.
 int run_server_main(int argc, char** argv, const ServerProgram& program);
 
 }  // namespace dfc::protocol

@@ -1,0 +1,93 @@
+// SPEC.md §9.1 (1.6): hello_ok announces a heartbeat endpoint beside the main
+// one; it answers ping with pong, whose body counts the requests the main
+// socket has answered, and refuses every other type. For servers that
+// declare 1.6 or later (Check::since_minor); older ones are skipped.
+#include "check.hpp"
+#include "context.hpp"
+#include "dfc/protocol/heartbeat.hpp"
+#include "dfc/protocol/transport.hpp"
+#include "expectations.hpp"
+
+namespace dfc::conformance {
+
+namespace protocol = dfc::protocol;
+namespace heartbeat = dfc::protocol::heartbeat;
+
+namespace {
+
+constexpr std::string_view kLoopbackPrefix = "tcp://127.0.0.1:";
+
+/// hello_ok.heartbeat_endpoint, checked.
+std::string announced_endpoint(const Context& context) {
+  const nlohmann::json& body = context.hello_reply->body;
+  const auto it = body.find(heartbeat::endpoint_key);
+  expect(it != body.end() && it->is_string() && !it->get<std::string>().empty(),
+         "hello_ok of a " + body.value("protocol_version", std::string("?")) + " server needs a non-empty string '" +
+             std::string(heartbeat::endpoint_key) + "' (SPEC.md §9.1)");
+  const std::string endpoint = it->get<std::string>();
+  if (const auto problem = protocol::endpoint_problem(endpoint)) throw CheckFailure("hello_ok.heartbeat_endpoint: " + *problem);
+  // Bound beside the main socket, which was told to listen on the loopback only.
+  expect(!endpoint.starts_with("tcp://") || endpoint.starts_with(kLoopbackPrefix),
+         "hello_ok.heartbeat_endpoint '" + endpoint + "' is not on the loopback interface the server was told to bind (tcp://127.0.0.1:*)");
+  return endpoint;
+}
+
+protocol::Message ping_heartbeat(Context& context, protocol::Connection& connection, std::string_view type = protocol::type::ping) {
+  protocol::Message request;
+  request.type = std::string(type);
+  try {
+    return connection.request_raw(std::move(request), context.timeout());
+  } catch (const protocol::TimeoutError& e) {
+    // The main socket still answers (the runner pings it after each check): only the heartbeat is silent.
+    throw CheckFailure(std::string("the heartbeat did not answer: ") + e.what());
+  }
+}
+
+std::int64_t handled_in(const protocol::Message& pong) {
+  const auto it = pong.body.find(heartbeat::handled_key);
+  expect(it != pong.body.end() && it->is_number_integer() && it->get<std::int64_t>() >= 0,
+         "the heartbeat's pong needs body.handled, an integer >= 0 (requests the main socket answered), got " + pong.body.dump());
+  return it->get<std::int64_t>();
+}
+
+void heartbeat_is_announced(Context& context) { (void)announced_endpoint(context); }
+
+void heartbeat_answers_ping(Context& context) {
+  protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat");
+  const protocol::Message first = ping_heartbeat(context, connection);
+  expect_type(first, protocol::type::pong);
+  const std::int64_t before = handled_in(first);
+  expect(before >= 1, "the heartbeat's pong says " + std::to_string(before) + " requests handled, but hello was answered before it");
+  const auto step = first.body.find(heartbeat::step_key);
+  expect(step != first.body.end() && step->is_number_integer() && step->get<std::int64_t>() >= 0,
+         "the heartbeat's pong needs body.step, an integer >= 0, got " + first.body.dump());
+  const auto busy = first.body.find(heartbeat::busy_key);
+  expect(busy != first.body.end() && (busy->is_null() || busy->is_number()),
+         "the heartbeat's pong needs body.busy_s, a number or null, got " + first.body.dump());
+  // The count follows the main socket: one more request answered there, one more in the next pong.
+  context.expect_alive();
+  const std::int64_t after = handled_in(ping_heartbeat(context, connection));
+  expect(after > before, "the heartbeat's pong still says " + std::to_string(after) + " requests handled after one more was answered");
+}
+
+void heartbeat_refuses_other_types(Context& context) {
+  protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat");
+  expect_error(ping_heartbeat(context, connection, protocol::type::query), {"UNKNOWN_TYPE"});
+}
+
+}  // namespace
+
+std::vector<Check> heartbeat_checks() {
+  using M = Milestone;
+  constexpr int since = heartbeat::kSinceMinor;
+  return {
+      {"heartbeat.announced", "hello_ok names a heartbeat_endpoint on the loopback (1.6)", M::greeted, M::none, false, heartbeat_is_announced,
+       since},
+      {"heartbeat.pong", "the heartbeat answers ping with pong counting the requests the main socket answered (1.6)", M::greeted, M::none,
+       true, heartbeat_answers_ping, since},
+      {"heartbeat.other_types_refused", "the heartbeat answers any other request with UNKNOWN_TYPE (1.6)", M::greeted, M::none, true,
+       heartbeat_refuses_other_types, since},
+  };
+}
+
+}  // namespace dfc::conformance

@@ -1,0 +1,119 @@
+// Hang detection (issue 42 part 4, SPEC.md §9.1): a server stopped mid-run
+// (SIGSTOP: a frozen node, a process swapped out) ends the run within seconds,
+// naming it, although run.deadline_s is 30 min; a slow server that answers its
+// heartbeat is never declared hung, and a server of an older minor, which has
+// no heartbeat, still runs.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "command_runner.hpp"
+#include "dfc/common/hdf5_file.hpp"
+#include "e2e_paths.hpp"
+
+namespace dfc::testing {
+namespace {
+
+/// Sends SIGCONT and SIGKILL to the processes of a test (the coupler until it
+/// was waited for, the servers it started) whatever happened to them, so that
+/// nothing is left running or stopped when a check fails half-way.
+class ProcessReaper {
+ public:
+  void add(pid_t pid) { pids_.push_back(pid); }
+  void forget(pid_t pid) { std::erase(pids_, pid); }
+  ~ProcessReaper() {
+    for (const pid_t pid : pids_) {
+      ::kill(pid, SIGCONT);
+      ::kill(pid, SIGKILL);
+    }
+  }
+
+ private:
+  std::vector<pid_t> pids_;
+};
+
+/// Runs the short pile (DEM + FDM) with deadline_s 1800, stops the server
+/// `victim` ("dem_server" or "fdm_server") with SIGSTOP once the exchanges
+/// run, and checks that the coupler ends the run within 15 s naming it.
+void expect_stopped_server_found(const std::string& slot, const std::string& victim_program) {
+  const auto dir = fresh_directory("hang_" + slot);
+  const auto log = dir / "coupler.log";
+  auto scenario = nlohmann::json::parse(read_text(e2e_dir() / "scenarios/pile_short.json"));
+  scenario["run"]["exchanges"] = 100000;  // surely stopped mid-run
+  scenario["run"]["deadline_s"] = 1800;   // what long studies need: the deadline alone would wait 30 min
+  const auto scenario_file = dir / "pile.json";
+  std::ofstream(scenario_file) << scenario.dump(2);
+  const pid_t coupler_pid = start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, log);
+  ProcessReaper reaper;
+  reaper.add(coupler_pid);
+
+  // The coupler prints its plan line before the first exchange.
+  wait_for_exchanges(log);
+  ::usleep(500'000);  // some exchanges done
+  pid_t victim = -1;
+  for (const pid_t child : child_pids(coupler_pid)) {
+    reaper.add(child);
+    if (process_name(child).find(victim_program) != std::string::npos) victim = child;
+  }
+  ASSERT_GT(victim, 0) << "no " << victim_program << " child found\n" << read_text(log);
+  ASSERT_EQ(::kill(victim, SIGSTOP), 0);
+
+  const auto stopped_at = std::chrono::steady_clock::now();
+  const int status = wait_command(coupler_pid, std::chrono::seconds(30));
+  reaper.forget(coupler_pid);  // waited for: its pid is free again
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - stopped_at).count();
+  const std::string output = read_text(log);
+  EXPECT_LT(seconds, 15.0) << output;
+  EXPECT_EQ(status, 1) << output;
+  EXPECT_NE(output.find("server " + slot + " (" + victim_program + ", pid " + std::to_string(victim) + ") stopped answering"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("no pong from its heartbeat"), std::string::npos) << output;
+
+  // As for a dead server: the exchanges done are in the file, with the reason.
+  const auto file = h5::File::open_read_only(dir / "run/results.h5");
+  EXPECT_GE(h5::read_f64(file, "/timeseries/exchange").size(), 1u);
+  EXPECT_NE(h5::read_string_attribute(file, "/", "failure").find("stopped answering"), std::string::npos);
+}
+
+TEST(HangDetection, StoppedDemServerIsNamedWithinSeconds) { expect_stopped_server_found("dem", "dem_server"); }
+
+TEST(HangDetection, StoppedContinuumServerIsNamedWithinSeconds) { expect_stopped_server_found("continuum", "fdm_server"); }
+
+/// A continuum-only run of the conformance fixture: `config` its section, `args` its options.
+CommandResult run_fixture(const std::string& name, const nlohmann::json& config, const nlohmann::json& args, const nlohmann::json& run) {
+  const auto dir = fresh_directory(name);
+  const nlohmann::json scenario = {{"schema_version", 1},
+                                   {"name", name},
+                                   {"participants", {{"continuum", {{"program", "conformance_fixture_server"}, {"args", args}, {"config", config}}}}},
+                                   {"run", run}};
+  std::ofstream(dir / "scenario.json") << scenario.dump(2);
+  return run_command({coupler(), "run", (dir / "scenario.json").string(), "--out", (dir / "out").string(), "--no-progress"},
+                     std::chrono::seconds(30));
+}
+
+// An advance of 3 s, three times run.hang_timeout_s: the server's heartbeat
+// answers while its main thread works, so the run completes.
+TEST(HangDetection, SlowAdvanceAnsweringItsHeartbeatIsNotHung) {
+  const CommandResult result = run_fixture("hang_slow_advance", {{"side", 2}, {"interface", false}, {"advance_s", 3.0}}, nlohmann::json::array(),
+                                           {{"exchanges", 1}, {"deadline_s", 30}, {"hang_timeout_s", 1}});
+  EXPECT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_GE(result.seconds, 3.0) << result.output;
+  EXPECT_EQ(result.output.find("stopped answering"), std::string::npos) << result.output;
+}
+
+// A server of protocol 1.5 announces no heartbeat: only the deadline applies,
+// and the run goes as before.
+TEST(HangDetection, ServerOfAnOlderMinorWithoutHeartbeatStillRuns) {
+  const CommandResult result = run_fixture("hang_older_minor", {{"side", 2}, {"interface", false}, {"advance_s", 1.5}}, {"--protocol-minor", "5"},
+                                           {{"exchanges", 1}, {"deadline_s", 30}, {"hang_timeout_s", 0.5}});
+  EXPECT_EQ(result.exit_status, 0) << result.output;
+}
+
+}  // namespace
+}  // namespace dfc::testing
