@@ -71,7 +71,7 @@ TEST(RebuildCarry, MatchesWhatTheIdKeyedArchiveRestores) {
   std::shuffle(shuffled.begin(), shuffled.end(), random);
 
   for (const int threads : {1, 2}) {
-    const std::vector<std::uint32_t> match = match_previous_pairs(before, new_to_old, first, second, threads);
+    const std::vector<std::uint32_t> match = match_previous_pairs(before, old_to_new, first, second, threads);
     ASSERT_EQ(match.size(), first.size());
     std::size_t carried = 0, fresh = 0;
     for (std::size_t k = 0; k < first.size(); ++k) {

@@ -136,10 +136,9 @@ std::vector<std::uint32_t> inverse_order(std::span<const std::uint32_t> new_to_o
   return old_to_new;
 }
 
-std::vector<std::uint32_t> match_previous_pairs(const PairContacts& before, std::span<const std::uint32_t> new_to_old,
+std::vector<std::uint32_t> match_previous_pairs(const PairContacts& before, std::span<const std::uint32_t> old_to_new,
                                                 const std::vector<std::uint32_t>& first, const std::vector<std::uint32_t>& second, int threads) {
-  const std::size_t n = new_to_old.size();
-  const std::vector<std::uint32_t> old_to_new = inverse_order(new_to_old, threads);
+  const std::size_t n = old_to_new.size();
   // The previous pairs by their first particle's new slot: (second's new slot, index).
   std::vector<std::uint32_t> start(n + 1, 0);
   for (const std::uint32_t i : before.first) ++start[old_to_new[i] + 1];

@@ -205,8 +205,9 @@ void Simulation::rebuild() {
   }
   pairs_.stride = settings_.particle_law.history_size();
   if (by_slot) {
-    std::vector<std::uint32_t> match = match_previous_pairs(previous, order, pairs_.first, pairs_.second, threads_);
-    if (settings_.particle_law.bonded()) append_unmatched_bonds(previous, order, match);
+    const std::vector<std::uint32_t> old_to_new = inverse_order(order, threads_);
+    std::vector<std::uint32_t> match = match_previous_pairs(previous, old_to_new, pairs_.first, pairs_.second, threads_);
+    if (settings_.particle_law.bonded()) append_unmatched_bonds(previous, old_to_new, match);
     reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
     pairs_.history.resize(pairs_.size() * pairs_.stride);  // uninitialised: the threads write (and first touch) every row
     move_matched_rows(std::move(previous), match, pairs_, threads_);
@@ -251,8 +252,7 @@ void Simulation::rebuild() {
   ++rebuilds_;
 }
 
-void Simulation::append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> new_to_old, std::vector<std::uint32_t>& match) {
-  const std::vector<std::uint32_t> old_to_new = inverse_order(new_to_old, threads_);
+void Simulation::append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> old_to_new, std::vector<std::uint32_t>& match) {
   // On every thread: one row load per previous pair, a cache miss each in a
   // large model. Each previous pair is matched at most once (distinct writes),
   // and the unmatched bonds are sorted by their (unique) keys below, so the

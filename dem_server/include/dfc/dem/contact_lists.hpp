@@ -187,13 +187,13 @@ inline constexpr std::uint32_t no_previous_pair = 0xffffffffu;
 [[nodiscard]] std::vector<std::uint32_t> inverse_order(std::span<const std::uint32_t> new_to_old, int threads);
 
 /// Carrying history across a rebuild of the same particles, re-sorted by slot
-/// (`new_to_old`, ParticleStore::permute): for each new pair (first[k],
+/// (`old_to_new`: the inverse_order of ParticleStore::permute's order): for each new pair (first[k],
 /// second[k], slots after the re-sort), the index of the pair of `before`
 /// (slots before it) that joins the same two particles in the same order, or
 /// no_previous_pair. The rows an id-keyed HistoryArchive would restore, found
 /// without copying them out and back, sorting keys or searching (a rebuild of
 /// the paper's open pile spent 5 s on that: 2.6 million rows of 184 B).
-[[nodiscard]] std::vector<std::uint32_t> match_previous_pairs(const PairContacts& before, std::span<const std::uint32_t> new_to_old,
+[[nodiscard]] std::vector<std::uint32_t> match_previous_pairs(const PairContacts& before, std::span<const std::uint32_t> old_to_new,
                                                               const std::vector<std::uint32_t>& first, const std::vector<std::uint32_t>& second,
                                                               int threads);
 

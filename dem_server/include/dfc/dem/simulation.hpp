@@ -190,8 +190,9 @@ class Simulation {
   /// Appends the pairs of `archive` with a bond (ever) that the search did not find.
   void append_persistent_pairs(const HistoryArchive& archive);
   /// The same for a rebuild by slot: the bonded pairs of `before` that no new
-  /// pair matched, appended in id order with their index in `match`.
-  void append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> new_to_old, std::vector<std::uint32_t>& match);
+  /// pair matched, appended in id order with their index in `match`
+  /// (`old_to_new`: the inverse of the rebuild's re-sort, as match_previous_pairs takes it).
+  void append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> old_to_new, std::vector<std::uint32_t>& match);
   /// Bonds every pair with a surface gap <= its law's bond gap (first
   /// rebuild); with `across_materials_only`, only unbonded pairs of particles
   /// of different materials whose history is empty.
