@@ -81,6 +81,7 @@ class Context {
   // Bookkeeping of the runner.
   std::set<Milestone> reached;
   std::optional<std::string> unavailable;  ///< why the server can no longer be used, once it cannot
+  bool needs_fresh_server = false;         ///< a check failed: the next one starts from a fresh server
 
  private:
   void check_still_running();
