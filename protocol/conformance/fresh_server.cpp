@@ -34,6 +34,10 @@ protocol::Message plain(std::string_view type, nlohmann::json body = nlohmann::j
 }  // namespace
 
 void bring_fresh_server_to(Context& context, Milestone milestone) {
+  if (context.server_started()) {  // keep what the failed process said, for the report
+    context.server().kill();
+    context.replaced_stderr_tail = context.server().stderr_tail(kStderrTailLines);
+  }
   context.start_server();
   context.unavailable.reset();
   context.set_exit_expected(false);
