@@ -94,8 +94,8 @@ void checkpoint_when_running_has_current_step(Context& context) {
 std::vector<Check> checkpoint_checks_configured() {
   using M = Milestone;
   return {
-      {"checkpoint.unsupported", "without capability checkpoint, checkpoint and restore get UNSUPPORTED (before 1.3: UNKNOWN_TYPE)", M::configured, M::none, true,
-       without_capability_is_unsupported},
+      {"checkpoint.unsupported", "without capability checkpoint, checkpoint and restore get UNSUPPORTED (before 1.3: UNKNOWN_TYPE)",
+       M::configured, M::none, true, without_capability_is_unsupported},
       {"checkpoint.missing_path", "checkpoint or restore without a string body.path gets BAD_MESSAGE", M::configured, M::none, true,
        missing_path_is_bad_message, kSinceMinor},
       {"checkpoint.missing_file", "restore from a file that does not exist gets BAD_CHECKPOINT", M::configured, M::none, true,

@@ -99,10 +99,10 @@ Tally run_checks(const std::vector<Check>& checks, Context& context, std::ostrea
   Tally tally;
   for (const Check& check : checks) {
     Result result;
-    if (const auto reason = blocked(check, context)) {
-      result = {Outcome::fail, *reason};
-    } else if (const auto skipped = not_yet(check, context)) {
+    if (const auto skipped = not_yet(check, context)) {  // before blocked(), which may start a fresh server
       result = {Outcome::skip, *skipped};
+    } else if (const auto reason = blocked(check, context)) {
+      result = {Outcome::fail, *reason};
     } else {
       result = run_one(check, context);
       if (check.ping_after && !context.unavailable) ping_after(context, result);
