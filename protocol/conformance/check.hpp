@@ -11,7 +11,8 @@ class Context;
 
 /// States of the session that later checks build on. A check whose
 /// prerequisite failed is reported as FAIL "not run" instead of producing a
-/// confusing OUT_OF_ORDER of its own.
+/// confusing OUT_OF_ORDER of its own; after any other failure the next check
+/// gets a fresh server brought to the state it needs (fresh_server.hpp).
 enum class Milestone { none, listening, greeted, configured, stepped };
 
 struct Check {
@@ -21,10 +22,13 @@ struct Check {
   Milestone establishes = Milestone::none;  ///< reached when this check passes
   bool ping_after = true;  ///< then verify the server still answers ping (it kept running)
   void (*run)(Context& context) = nullptr;
-  /// The minor version (of major 1) the rule appeared in: a server that
-  /// declares an older one in hello_ok is not held to it (SKIP). 0: every
-  /// 1.x server. Only the checks of rules added from 1.6 on say so yet.
+  /// The minor version (of major 1) the rule appeared in (SPEC.md §1): a
+  /// server that declares an older one in hello_ok is not held to it (SKIP).
+  /// 0: every 1.x server.
   int since_minor = 0;
+  /// The check examines the process the check before it used (the exit after
+  /// shutdown), so it never gets the fresh server that follows a failure.
+  bool same_process = false;
 };
 
 /// The server broke the contract; what() says how, in one sentence.

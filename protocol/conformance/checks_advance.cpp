@@ -31,9 +31,7 @@ void expect_step_unchanged(Context& context) {
 }
 
 protocol::Message advance_with_inputs(Context& context, std::int64_t step, std::int64_t n_steps, double dt, std::int64_t extra_rows = 0) {
-  protocol::Message request = advance_request(step, n_steps, dt);
-  request.arrays = zero_inputs(context, extra_rows);
-  return context.request(std::move(request));
+  return context.request(advance_with_zero_inputs(context, step, n_steps, dt, extra_rows));
 }
 
 void wrong_step_is_step_mismatch(Context& context) {
@@ -277,22 +275,22 @@ std::vector<Check> advance_checks() {
       {"advance.negative_dt", "advance with dt < 0 gets BAD_MESSAGE", M::configured, M::none, true, negative_dt_is_bad_message},
       {"advance.missing_input", "advance without its interface input gets BAD_ARRAY", M::configured, M::none, true,
        missing_input_is_bad_array},
-      {"advance.unexpected_input", "an input array the server does not take gets BAD_ARRAY naming it", M::configured, M::none, true,
-       unexpected_input_is_bad_array},
+      {"advance.unexpected_input", "an input array the server does not take gets BAD_ARRAY naming it (1.1)", M::configured, M::none, true,
+       unexpected_input_is_bad_array, 1},
       {"advance.wrong_input_shape", "an input with n+1 rows gets BAD_ARRAY naming the array", M::configured, M::none, true,
        misshapen_input_is_bad_array},
       {"advance.unstable_dt", "advance with dt = 10 dt_max gets SOLVER_FAILURE with body.dt_max and changes nothing (1.4)", M::configured,
-       M::none, true, unstable_dt_is_refused_with_dt_max},
+       M::none, true, unstable_dt_is_refused_with_dt_max, 4},
       {"advance.one_step", "advance 1 step from 0 gets advanced at step 1 with outputs of SPEC §6.1", M::configured, M::stepped, true,
        one_step},
       {"advance.two_steps", "advance 2 steps from 1 gets advanced at step 3", M::stepped, M::none, true, two_steps},
       {"advance.forces_received", "a provider's interface_force_received and interface_power_w match non-zero forces sent", M::stepped,
        M::none, true, provider_reports_the_forces_it_received},
       {"running.query", "query gets monitors at the current step", M::configured, M::none, true, query_reports_step_and_monitors},
-      {"running.monitor_units", "configure's info.monitor_units gives the unit of every monitor sent after a step", M::stepped, M::none,
-       true, declared_units_cover_monitors},
+      {"running.monitor_units", "configure's info.monitor_units gives the unit of every monitor sent after a step (1.2)", M::stepped,
+       M::none, true, declared_units_cover_monitors, 2},
       {"running.progress_monitors", "configure's info.progress_monitors, if any, is well formed and names number monitors sent (1.5)",
-       M::stepped, M::none, true, progress_monitors_are_declared_and_sent},
+       M::stepped, M::none, true, progress_monitors_are_declared_and_sent, 5},
       {"running.snapshot", "snapshot gets snapshot_data with a kind and its arrays (snapshot capability), else UNSUPPORTED",
        M::configured, M::none, true, snapshot_matches_capability},
       {"running.get_interface_refused", "get_interface after advancing gets OUT_OF_ORDER", M::stepped, M::none, true,

@@ -26,10 +26,18 @@ fs::path scratch_file(const std::string& name) {
   return folder / name;
 }
 
+/// checkpoint and restore came with 1.3 (SPEC.md §1): the other checkpoint
+/// checks skip an older server, and this one holds it to the older answer.
+constexpr int kSinceMinor = 3;
+
+// Without the capability: UNSUPPORTED; from a server older than 1.3, which
+// knows neither request, UNKNOWN_TYPE.
 void without_capability_is_unsupported(Context& context) {
   if (context.checkpoint) throw NotApplicable("the server has capability checkpoint");
-  expect_error(context.request(protocol::type::checkpoint, {{"path", scratch_file("unsupported.checkpoint").string()}}), {"UNSUPPORTED"});
-  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("unsupported.checkpoint").string()}}), {"UNSUPPORTED"});
+  const bool older = context.declared_minor && *context.declared_minor < kSinceMinor;
+  const char* code = older ? "UNKNOWN_TYPE" : "UNSUPPORTED";
+  expect_error(context.request(protocol::type::checkpoint, {{"path", scratch_file("unsupported.checkpoint").string()}}), {code});
+  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("unsupported.checkpoint").string()}}), {code});
 }
 
 void needs_capability(const Context& context) {
@@ -86,16 +94,16 @@ void checkpoint_when_running_has_current_step(Context& context) {
 std::vector<Check> checkpoint_checks_configured() {
   using M = Milestone;
   return {
-      {"checkpoint.unsupported", "without capability checkpoint, checkpoint and restore get UNSUPPORTED", M::configured, M::none, true,
-       without_capability_is_unsupported},
+      {"checkpoint.unsupported", "without capability checkpoint, checkpoint and restore get UNSUPPORTED (before 1.3: UNKNOWN_TYPE)",
+       M::configured, M::none, true, without_capability_is_unsupported},
       {"checkpoint.missing_path", "checkpoint or restore without a string body.path gets BAD_MESSAGE", M::configured, M::none, true,
-       missing_path_is_bad_message},
+       missing_path_is_bad_message, kSinceMinor},
       {"checkpoint.missing_file", "restore from a file that does not exist gets BAD_CHECKPOINT", M::configured, M::none, true,
-       missing_file_is_bad_checkpoint},
+       missing_file_is_bad_checkpoint, kSinceMinor},
       {"checkpoint.damaged_file", "restore from a damaged file gets BAD_CHECKPOINT", M::configured, M::none, true,
-       damaged_file_is_bad_checkpoint},
+       damaged_file_is_bad_checkpoint, kSinceMinor},
       {"checkpoint.configured_round_trip", "checkpoint while configured gets checkpointed and a file; restore of it gets restored at that step",
-       M::configured, M::none, true, write_then_restore_while_configured},
+       M::configured, M::none, true, write_then_restore_while_configured, kSinceMinor},
   };
 }
 
@@ -103,9 +111,9 @@ std::vector<Check> checkpoint_checks_running() {
   using M = Milestone;
   return {
       {"checkpoint.restore_refused_when_running", "restore after advancing gets OUT_OF_ORDER", M::stepped, M::none, true,
-       restore_when_running_is_out_of_order},
+       restore_when_running_is_out_of_order, kSinceMinor},
       {"checkpoint.running", "checkpoint after advancing gets checkpointed at the current step and a file", M::stepped, M::none, true,
-       checkpoint_when_running_has_current_step},
+       checkpoint_when_running_has_current_step, kSinceMinor},
   };
 }
 

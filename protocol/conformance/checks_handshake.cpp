@@ -4,22 +4,14 @@
 
 #include "check.hpp"
 #include "context.hpp"
-#include "dfc/common/version.hpp"
 #include "expectations.hpp"
+#include "requests.hpp"
 
 namespace dfc::conformance {
 
 namespace protocol = dfc::protocol;
 
 namespace {
-
-protocol::Message hello_request(std::string version) {
-  protocol::Message hello;
-  hello.type = protocol::type::hello;
-  hello.version = std::move(version);
-  hello.body = {{"client", {{"name", "dfc_conformance"}, {"version", std::string(project_version())}}}};
-  return hello;
-}
 
 bool has_capability(const nlohmann::json& capabilities, std::string_view name) {
   if (!capabilities.is_array()) return false;

@@ -132,7 +132,7 @@ std::vector<Check> interface_checks() {
       {"interface.facets_face_out", "get_interface's facet normals point out of the continuum (away from its nearest zone)",
        M::configured, M::none, true, provided_facets_face_out_of_the_continuum},
       {"interface.duplicate_node_ids", "set_interface whose node_ids repeat an id gets BAD_ARRAY (1.4)", M::configured, M::none, true,
-       duplicate_node_ids_are_bad_array},
+       duplicate_node_ids_are_bad_array, 4},
       {"interface.set", "set_interface with a 2-triangle mesh gets ok or a protocol error (accepts_interface), else UNSUPPORTED",
        M::configured, M::none, true, set_interface_matches_capability},
   };

@@ -170,7 +170,8 @@ std::vector<Check> malformed_message_checks() {
       {"malformed.wrong_protocol", "protocol 'not-dfc' gets BAD_MESSAGE", M::greeted, M::none, true, wrong_protocol_name},
       {"malformed.body_not_object", "a 'body' that is not an object gets BAD_MESSAGE", M::greeted, M::none, true, body_not_object},
       {"limits.header_too_large", "a header of max_header_bytes + 1 bytes gets TOO_LARGE", M::greeted, M::none, true, header_over_limit},
-      {"limits.nesting_too_deep", "a header nested 100 000 levels deep gets BAD_MESSAGE", M::greeted, M::none, true, header_nested_too_deep},
+      {"limits.nesting_too_deep", "a header nested 100 000 levels deep gets BAD_MESSAGE (1.1)", M::greeted, M::none, true,
+       header_nested_too_deep, 1},
       {"limits.too_many_arrays", "max_arrays + 1 array frames get TOO_LARGE", M::greeted, M::none, true, too_many_arrays},
       {"arrays.count_mismatch", "2 descriptors with 1 frame get BAD_ARRAY", M::greeted, M::none, true, descriptor_count_differs_from_frames},
       {"arrays.length_mismatch", "f64 [3] in a 16-byte frame gets BAD_ARRAY", M::greeted, M::none, true, frame_length_differs_from_shape},
@@ -182,7 +183,7 @@ std::vector<Check> malformed_message_checks() {
       {"arrays.overflowing_shape", "a shape whose byte size overflows 64 bits gets TOO_LARGE or BAD_ARRAY", M::greeted, M::none, true,
        overflowing_shape},
       {"malformed.reply_seq_order", "reply seqs go up by one across replies, an undecodable message's error included (1.4)", M::greeted,
-       M::none, true, replies_are_numbered_in_sending_order},
+       M::none, true, replies_are_numbered_in_sending_order, 4},
   };
 }
 

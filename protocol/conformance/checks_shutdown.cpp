@@ -38,9 +38,10 @@ std::vector<Check> shutdown_checks() {
   using M = Milestone;
   return {
       {"shutdown.bye", "shutdown gets bye", M::listening, M::none, false, shutdown_gets_bye},
-      {"shutdown.exit_status", "the process exits with status 0 within 5 s of bye", M::listening, M::none, false, process_exits_zero},
+      {"shutdown.exit_status", "the process exits with status 0 within 5 s of bye", M::listening, M::none, false, process_exits_zero, 0,
+       true},
       {"shutdown.stdout_clean", "stdout carried nothing but the listening line", M::listening, M::none, false,
-       stdout_has_only_the_listening_line},
+       stdout_has_only_the_listening_line, 0, true},
   };
 }
 

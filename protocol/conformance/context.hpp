@@ -25,6 +25,9 @@ class ServerGone : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Lines of a server's stderr shown after a failure.
+inline constexpr std::size_t kStderrTailLines = 20;
+
 class Context {
  public:
   explicit Context(Options options);
@@ -81,6 +84,8 @@ class Context {
   // Bookkeeping of the runner.
   std::set<Milestone> reached;
   std::optional<std::string> unavailable;  ///< why the server can no longer be used, once it cannot
+  bool needs_fresh_server = false;         ///< a check failed: the next one starts from a fresh server
+  std::string replaced_stderr_tail;        ///< the stderr tail of the last process replaced after a failure
 
  private:
   void check_still_running();

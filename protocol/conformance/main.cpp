@@ -4,7 +4,8 @@
 //   dfc_conformance [--config FILE] [--timeout S] -- COMMAND [ARGS...]
 //
 // 1. read the command line;  2. run the check table (it starts the server);
-// 3. print the tally and, after a failure, the tail of the server's stderr.
+// 3. print the tally and, after a failure, the tail of the stderr of the
+//    process that failed last.
 // The server process is killed when the context goes away, whatever happened.
 #include <iostream>
 
@@ -17,8 +18,6 @@
 #include "runner.hpp"
 
 namespace {
-
-constexpr std::size_t kStderrTailLines = 20;
 
 int print_list() {
   for (const auto& check : dfc::conformance::all_checks()) std::cout << check.name << "  " << check.summary << "\n";
@@ -49,7 +48,8 @@ int main(int argc, char** argv) {
   const Tally tally = run_checks(all_checks(), context, std::cout);
   std::cout << tally.passed << " passed, " << tally.failed << " failed" << std::endl;
   if (tally.failed > 0 && context.server_started()) {
-    const std::string tail = context.server().stderr_tail(kStderrTailLines);
+    // The process of the last failure: the current one, unless it was replaced by a fresh one.
+    const std::string tail = context.needs_fresh_server ? context.server().stderr_tail(kStderrTailLines) : context.replaced_stderr_tail;
     if (!tail.empty()) std::cerr << "--- last lines of the server's stderr ---\n" << tail << "\n";
   }
   return tally.failed == 0 ? 0 : 1;

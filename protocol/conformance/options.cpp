@@ -70,7 +70,11 @@ state ordering, malformed and oversized frames, interface exchange, step
 semantics, query, snapshot, shutdown and exit status. It also runs
 `COMMAND ARGS --help` and `COMMAND ARGS --version`. Prints one line per check
 ("PASS name", "FAIL name: why", or "SKIP name: why" when the server's
-capabilities make a check meaningless) and ends with "N passed, M failed".
+capabilities make a check meaningless or its rule came in a later protocol
+minor than the server declares in hello_ok) and ends with "N passed, M
+failed". The check after a failed one runs against a fresh process of the
+same command, brought back to the state it needs, so one broken rule fails
+one check.
 Exit status: 0 if no check failed, 1 if one did, 2 for a usage error.
 
 Options:

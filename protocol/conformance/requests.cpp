@@ -2,16 +2,32 @@
 
 #include "check.hpp"
 #include "context.hpp"
+#include "dfc/common/version.hpp"
 
 namespace dfc::conformance {
 
 namespace protocol = dfc::protocol;
+
+protocol::Message hello_request(std::string version) {
+  protocol::Message hello;
+  hello.type = protocol::type::hello;
+  hello.version = std::move(version);
+  hello.body = {{"client", {{"name", "dfc_conformance"}, {"version", std::string(project_version())}}}};
+  return hello;
+}
 
 protocol::Message advance_request(std::int64_t step, std::int64_t n_steps, double dt) {
   protocol::Message advance;
   advance.type = protocol::type::advance;
   advance.step = step;
   advance.body = {{"n_steps", n_steps}, {"dt", dt}};
+  return advance;
+}
+
+protocol::Message advance_with_zero_inputs(const Context& context, std::int64_t step, std::int64_t n_steps, double dt,
+                                           std::int64_t extra_rows) {
+  protocol::Message advance = advance_request(step, n_steps, dt);
+  advance.arrays = zero_inputs(context, extra_rows);
   return advance;
 }
 

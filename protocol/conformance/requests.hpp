@@ -1,6 +1,7 @@
 #pragma once
 // Well-formed requests the checks send (and deliberately bend).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "dfc/protocol/message.hpp"
@@ -9,8 +10,15 @@ namespace dfc::conformance {
 
 class Context;
 
+/// hello from the checker, speaking `version`.
+[[nodiscard]] protocol::Message hello_request(std::string version);
+
 /// advance from `step` by `n_steps` of `dt`, with no arrays.
 [[nodiscard]] protocol::Message advance_request(std::int64_t step, std::int64_t n_steps, double dt);
+
+/// The same with zero_inputs(context, extra_rows) as its arrays.
+[[nodiscard]] protocol::Message advance_with_zero_inputs(const Context& context, std::int64_t step, std::int64_t n_steps, double dt,
+                                                         std::int64_t extra_rows = 0);
 
 /// set_interface with the test mesh: a unit square in z = 0 as two
 /// triangles (normal +z), node ids 101..104 so that ids and rows differ.

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "context.hpp"
+#include "fresh_server.hpp"
 
 namespace dfc::conformance {
 
@@ -20,11 +21,23 @@ std::string_view milestone_text(Milestone milestone) {
   return "?";
 }
 
-/// Why `check` cannot run now, if it cannot.
-std::optional<std::string> blocked(const Check& check, const Context& context) {
+/// Why `check` cannot run now, if it cannot. After a failed check the next
+/// one gets a fresh server brought to the state it needs, so that one
+/// failure never makes another check fail; a server that cannot be brought
+/// there again leaves that state unreached for the checks after it.
+std::optional<std::string> blocked(const Check& check, Context& context) {
   if (check.needs == Milestone::none) return std::nullopt;
-  if (context.unavailable) return "not run: " + *context.unavailable;
   if (!context.reached.contains(check.needs)) return "not run: needs " + std::string(milestone_text(check.needs)) + ", which failed";
+  if (context.needs_fresh_server && !check.same_process) {
+    try {
+      bring_fresh_server_to(context, check.needs);
+      context.needs_fresh_server = false;
+    } catch (const std::exception& e) {
+      context.reached.erase(check.needs);
+      return std::string("not run: ") + e.what();
+    }
+  }
+  if (context.unavailable) return "not run: " + *context.unavailable;
   return std::nullopt;
 }
 
@@ -86,14 +99,15 @@ Tally run_checks(const std::vector<Check>& checks, Context& context, std::ostrea
   Tally tally;
   for (const Check& check : checks) {
     Result result;
-    if (const auto reason = blocked(check, context)) {
-      result = {Outcome::fail, *reason};
-    } else if (const auto skipped = not_yet(check, context)) {
+    if (const auto skipped = not_yet(check, context)) {  // before blocked(), which may start a fresh server
       result = {Outcome::skip, *skipped};
+    } else if (const auto reason = blocked(check, context)) {
+      result = {Outcome::fail, *reason};
     } else {
       result = run_one(check, context);
       if (check.ping_after && !context.unavailable) ping_after(context, result);
       if (result.outcome == Outcome::pass && check.establishes != Milestone::none) context.reached.insert(check.establishes);
+      if (result.outcome == Outcome::fail && context.server_started()) context.needs_fresh_server = true;
     }
     switch (result.outcome) {
       case Outcome::pass:

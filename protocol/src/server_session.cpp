@@ -17,6 +17,10 @@ namespace dfc::protocol {
 
 namespace {
 
+/// checkpoint and restore came with 1.3 (SPEC.md §1): a session declaring
+/// less answers them as an older server does, UNKNOWN_TYPE.
+constexpr int kCheckpointSinceMinor = 3;
+
 std::string allowed_list(std::initializer_list<SessionState> allowed) {
   std::string text;
   for (const auto s : allowed) text += (text.empty() ? "" : " or ") + std::string(session_state_name(s));
@@ -128,8 +132,9 @@ Message ServerSession::dispatch(const Message& request) {
   if (t == type::advance) return on_advance(request);
   if (t == type::query) return on_query(request);
   if (t == type::snapshot) return on_snapshot(request);
-  if (t == type::checkpoint) return on_checkpoint(request);
-  if (t == type::restore) return on_restore(request);
+  const bool knows_checkpoints = minor_ >= kCheckpointSinceMinor;  // SPEC.md §1, 1.3
+  if (t == type::checkpoint && knows_checkpoints) return on_checkpoint(request);
+  if (t == type::restore && knows_checkpoints) return on_restore(request);
   if (t == type::ping) return reply_to(request, type::pong);
   if (t == type::shutdown) {
     state_ = SessionState::closed;

@@ -115,5 +115,14 @@ TEST(HangDetection, ServerOfAnOlderMinorWithoutHeartbeatStillRuns) {
   EXPECT_EQ(result.exit_status, 0) << result.output;
 }
 
+// A server of protocol 1.0 (SPEC.md §1: no heartbeat, no monitor_units, no
+// progress_monitors, checkpoint unknown) still runs with today's coupler.
+TEST(HangDetection, ServerOfProtocol1_0StillRuns) {
+  const CommandResult result = run_fixture("hang_protocol_1_0", {{"side", 2}, {"interface", false}}, {"--protocol-minor", "0"},
+                                           {{"exchanges", 3}, {"deadline_s", 30}});
+  EXPECT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_NE(result.output.find("finished: 3 exchanges"), std::string::npos) << result.output;
+}
+
 }  // namespace
 }  // namespace dfc::testing

@@ -1,9 +1,11 @@
 // conformance_fixture_server: a protocol v1 server around FixtureBackend,
 // for the tests of dfc_conformance and the coupler. `--break throw|shape|crash|hang|
-// no-force-monitor|nan-velocity|huge-particle-count|unsent-progress-monitor|malformed-progress-monitors|no-heartbeat` makes it misbehave on purpose; every other option is the generic
+// no-force-monitor|nan-velocity|huge-particle-count|unsent-progress-monitor|malformed-progress-monitors|no-heartbeat|accept-surplus-input` makes it misbehave on purpose; every other option is the generic
 // server's (--bind, --help, --version, ...). `--protocol-minor N` makes it
-// declare 1.N instead of the current minor, as a server of that version would
-// (below 1.6 it has no heartbeat, SPEC.md §9.1).
+// declare 1.N instead of the current minor and behave as a server of that
+// version where the rules differ (SPEC.md §1): below 1.6 no heartbeat, below
+// 1.5 no progress_monitors, below 1.3 checkpoint is UNKNOWN_TYPE, below 1.2
+// no monitor_units, below 1.1 surplus input arrays are ignored.
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -21,7 +23,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--break") == 0 && i + 1 < argc) {
       const auto parsed = dfc::protocol::testing::breakage_from_name(argv[++i]);
       if (!parsed) {
-        std::cerr << "conformance_fixture_server: --break takes throw, shape, crash, hang, no-force-monitor, nan-velocity, huge-particle-count, unsent-progress-monitor, malformed-progress-monitors or no-heartbeat, not '" << argv[i] << "'\n";
+        std::cerr << "conformance_fixture_server: --break takes throw, shape, crash, hang, no-force-monitor, nan-velocity, huge-particle-count, unsent-progress-monitor, malformed-progress-monitors, no-heartbeat or accept-surplus-input, not '" << argv[i] << "'\n";
         return 2;
       }
       breakage = *parsed;
@@ -43,7 +45,7 @@ int main(int argc, char** argv) {
       "  side       integer >= 2, default 2: the interface is a side x side grid of nodes 1 m apart in z = 0\n"
       "  advance_s  number in [0, 60], default 0: seconds each advance takes (a slow solver)\n"
       "  interface  boolean, default true: false narrows the capabilities to snapshot, for a run of this server alone",
-      [breakage] { return std::make_unique<dfc::protocol::testing::FixtureBackend>(breakage); },
+      [breakage, declared_minor] { return std::make_unique<dfc::protocol::testing::FixtureBackend>(breakage, declared_minor); },
       {}};
   program.declared_minor = declared_minor;
   program.heartbeat = breakage != Breakage::no_heartbeat;  // the generic server runs it, not the backend

@@ -32,6 +32,7 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "unsent-progress-monitor") return Breakage::unsent_progress_monitor;
   if (name == "malformed-progress-monitors") return Breakage::malformed_progress_monitors;
   if (name == "no-heartbeat") return Breakage::no_heartbeat;
+  if (name == "accept-surplus-input") return Breakage::accepts_surplus_input;
   return std::nullopt;
 }
 
@@ -59,7 +60,9 @@ nlohmann::json FixtureBackend::configure(const nlohmann::json& section) {
     units["fixture_never_sent"] = unit::dimensionless;
   }
   const nlohmann::json listed = breakage_ == Breakage::malformed_progress_monitors ? nlohmann::json("kinetic_energy_j") : to_json(progress);
-  nlohmann::json info = {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}, {monitor_units_key, units}, {progress_monitors_key, listed}};
+  nlohmann::json info = {{"dt_suggested", 1e-3}, {"dt_max", kDtMax}};
+  if (declared_minor_ >= 2) info[monitor_units_key] = units;        // SPEC.md §1, 1.2
+  if (declared_minor_ >= 5) info[progress_monitors_key] = listed;  // SPEC.md §1, 1.5
   if (!interface_) info["capabilities"] = {capability::snapshot};  // uncoupled: a run of this server alone (SPEC.md §4.2)
   return info;
 }
@@ -76,14 +79,18 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::huge_particle_count:
     case Breakage::unsent_progress_monitor:
     case Breakage::malformed_progress_monitors:
-    case Breakage::no_heartbeat: break;
+    case Breakage::no_heartbeat:
+    case Breakage::accepts_surplus_input: break;
   }
   if (request.dt > kDtMax) throw UnstableStepError("dt exceeds the fixture's stability limit", kDtMax);  // before anything changes
   // A slow solver: the main thread is busy, the heartbeat thread answers (SPEC.md §9.1).
   if (advance_seconds_ > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(advance_seconds_));
   const std::int64_t n = mesh_.node_count();
-  if (interface_) require_only(request.inputs, {field::force, field::mass}, "conformance_fixture_server");
-  else require_only(request.inputs, {}, "conformance_fixture_server");
+  // A 1.0 server ignores input arrays it does not take (SPEC.md §1, 1.1).
+  if (declared_minor_ >= 1 && breakage_ != Breakage::accepts_surplus_input) {
+    if (interface_) require_only(request.inputs, {field::force, field::mass}, "conformance_fixture_server");
+    else require_only(request.inputs, {}, "conformance_fixture_server");
+  }
   const std::vector<double> force =
       interface_ ? require_f64(request.inputs, field::force, n, 3) : std::vector<double>(static_cast<std::size_t>(3 * n), 0.0);
   std::vector<double> lumped(static_cast<std::size_t>(n), 0.0);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string_view>
 
+#include "dfc/protocol/message.hpp"
 #include "dfc/protocol/solver_backend.hpp"
 
 namespace dfc::protocol::testing {
@@ -22,15 +23,20 @@ enum class Breakage {
   huge_particle_count,  ///< monitors claim 2e10 particles, more than any snapshot could hold
   unsent_progress_monitor,      ///< configure lists a progress monitor the server never sends
   malformed_progress_monitors,  ///< configure's info.progress_monitors is not an array
-  no_heartbeat                  ///< declares the current minor but runs no heartbeat (SPEC.md §9.1)
+  no_heartbeat,                 ///< declares the current minor but runs no heartbeat (SPEC.md §9.1)
+  accepts_surplus_input         ///< advances despite an input array it does not take (SPEC.md §6.1, 1.1)
 };
 
-/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors", "no-heartbeat"; nullopt for anything else.
+/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors", "no-heartbeat", "accept-surplus-input"; nullopt for anything else.
 [[nodiscard]] std::optional<Breakage> breakage_from_name(std::string_view name) noexcept;
 
 class FixtureBackend final : public SolverBackend {
  public:
-  explicit FixtureBackend(Breakage breakage = Breakage::none) : breakage_(breakage) {}
+  /// `declared_minor`: the minor of the server it plays; below 1.1 it takes
+  /// surplus input arrays silently, below 1.2 it declares no monitor_units,
+  /// below 1.5 no progress_monitors (SPEC.md §1).
+  explicit FixtureBackend(Breakage breakage = Breakage::none, int declared_minor = kVersionMinor)
+      : breakage_(breakage), declared_minor_(declared_minor) {}
 
   [[nodiscard]] SolverIdentity identity() const override;
   nlohmann::json configure(const nlohmann::json& section) override;
@@ -41,6 +47,7 @@ class FixtureBackend final : public SolverBackend {
 
  private:
   Breakage breakage_;
+  int declared_minor_;
   double advance_seconds_ = 0.0;  ///< section key advance_s: how long each advance takes (a slow solver)
   bool interface_ = true;         ///< section key interface: false narrows the capabilities to snapshot (a run alone)
   InterfaceMesh mesh_;

@@ -102,6 +102,17 @@ TEST_F(ServerSessionTest, UnknownTypeIsUnknownTypeInAnyState) {
   EXPECT_EQ(session.state(), SessionState::configured);
 }
 
+// SPEC.md §1: checkpoint and restore came with 1.3; a session playing an
+// older server knows neither, as that server did.
+TEST_F(ServerSessionTest, CheckpointAndRestoreAreUnknownTypesBeforeMinor3) {
+  reach_configured();
+  session.declare_minor(2);
+  EXPECT_EQ(error_code(send(type::checkpoint, {{"path", "x.checkpoint"}})), "UNKNOWN_TYPE");
+  EXPECT_EQ(error_code(send(type::restore, {{"path", "x.checkpoint"}})), "UNKNOWN_TYPE");
+  session.declare_minor(3);
+  EXPECT_EQ(error_code(send(type::checkpoint, {{"path", "x.checkpoint"}})), "UNSUPPORTED");
+}
+
 TEST_F(ServerSessionTest, AnUnknownType200kBLongIsEchoedCutWithItsLength) {
   // Issue 42: the reply's message quotes the type, but not all of it.
   const Message reply = send(std::string(200'000, 't'));

@@ -37,8 +37,12 @@ class ServerSession {
 
   /// The minor version the session declares in hello_ok and every reply's
   /// header (default kVersionMinor). Only a test fixture that plays an older
-  /// server declares less.
-  void declare_minor(int minor) { version_ = std::to_string(kVersionMajor) + "." + std::to_string(minor); }
+  /// server declares less; the session then answers as that server would
+  /// where the rules differ (before 1.3, checkpoint and restore are UNKNOWN_TYPE).
+  void declare_minor(int minor) {
+    minor_ = minor;
+    version_ = std::to_string(kVersionMajor) + "." + std::to_string(minor);
+  }
   [[nodiscard]] const std::string& version() const noexcept { return version_; }
   /// hello_ok announces the heartbeat's endpoint (SPEC.md §9.1, 1.6) when one is set.
   void set_heartbeat_endpoint(std::string endpoint) { heartbeat_endpoint_ = std::move(endpoint); }
@@ -77,6 +81,7 @@ class ServerSession {
   std::int64_t step_ = 0;
   std::int64_t next_seq_ = 0;
   std::string section_hash_;  ///< configured.scenario_hash, stamped on checkpoints
+  int minor_ = kVersionMinor;
   std::string version_ = version_string();
   std::string heartbeat_endpoint_;  ///< empty: none announced
   AdvanceStatistics advance_statistics_;
