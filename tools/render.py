@@ -262,7 +262,6 @@ job = json.load(open(sys.argv[1]))
 reader = XDMFReader(FileNames=[job["xdmf"]])
 reader.UpdatePipelineInformation()
 times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
-blocks = [name for name in ("dem_particles", "dem_walls")]
 
 
 def block(name):
