@@ -35,12 +35,12 @@ echo "wrote $FIGURES/pile_bonded_section.png"
 cp "$WORK"/demo_pictures/snapshot_*.png "$FIGURES/demo_open_pile_section.png"
 echo "wrote $FIGURES/demo_open_pile_section.png"
 # The same snapshot drawn by ParaView (pvbatch, in xvfb-run without a display), where installed.
-if command -v pvbatch >/dev/null && { [ -n "${DISPLAY:-}" ] || command -v xvfb-run >/dev/null; }; then
+if command -v pvbatch >/dev/null && { [ -n "${DISPLAY:-}" ] || { command -v xvfb-run >/dev/null && command -v xauth >/dev/null; }; }; then
   "$PYTHON" "$ROOT/tools/render.py" "$WORK/demo" --snapshot -1 --renderer pvbatch --out "$WORK/demo_pvbatch"
   cp "$WORK"/demo_pvbatch/snapshot_*.png "$FIGURES/demo_open_pile_section_pvbatch.png"
   echo "wrote $FIGURES/demo_open_pile_section_pvbatch.png"
 else
-  echo "pvbatch (or a display / xvfb-run) not found: $FIGURES/demo_open_pile_section_pvbatch.png kept as it is"
+  echo "pvbatch (or a display / xvfb-run and xauth) not found: $FIGURES/demo_open_pile_section_pvbatch.png kept as it is"
 fi
 # The foundation of docs/centrifuge_foundation.md (Fig. 7's run: 100 g,
 # packing 1) pushed 3 mm (0.25 D_f) at the study's rate, one DEM thread: a

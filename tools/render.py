@@ -47,9 +47,20 @@ def has_pillow():
     return True
 
 
+def virtual_display_missing():
+    """Why pvbatch cannot get an X display here, or None. Debian's ParaView
+    renders through X (no offscreen OpenGL): without $DISPLAY it runs in
+    xvfb-run, which needs xauth (only a Recommends of Debian's xvfb, so a
+    --no-install-recommends install lacks it and xvfb-run fails)."""
+    if os.environ.get("DISPLAY"):
+        return None
+    missing = [tool for tool in ("xvfb-run", "xauth") if shutil.which(tool) is None]
+    return f"no X display and {' and '.join(missing)} not installed (apt-get install xvfb xauth)" if missing else None
+
+
 def auto_renderer():
     """pvbatch where it is installed and can draw (an X display, or xvfb-run for a virtual one), else matplotlib."""
-    return "pvbatch" if PVBATCH and (os.environ.get("DISPLAY") or shutil.which("xvfb-run")) else "matplotlib"
+    return "pvbatch" if PVBATCH and virtual_display_missing() is None else "matplotlib"
 
 
 def run_folder(path):
@@ -390,14 +401,15 @@ def render_pvbatch(run_dir, out, snapshot, colour):
         script = os.path.join(work, "section.py")
         with open(script, "w") as f:
             f.write(PVBATCH_SCRIPT)
-        # Debian's ParaView renders through X (no offscreen OpenGL): without a
-        # display pvbatch aborts creating its window, so it runs in a virtual one.
+        # Without a display pvbatch aborts creating its window, so it runs in a virtual one.
         command = [PVBATCH, script, job]
+        if virtual_display_missing():
+            raise SystemExit(f"render.py: pvbatch needs an X display: {virtual_display_missing()}; or use --renderer matplotlib")
         if not os.environ.get("DISPLAY"):
-            if shutil.which("xvfb-run") is None:
-                raise SystemExit("render.py: pvbatch needs an X display and there is none; install xvfb (xvfb-run) or use --renderer matplotlib")
             command = ["xvfb-run", "-a"] + command
-        subprocess.run(command, check=True)
+        drawn = subprocess.run(command)
+        if drawn.returncode != 0:
+            raise SystemExit(f"render.py: pvbatch failed (exit status {drawn.returncode}; its messages above): {' '.join(command)}")
     return with_gif([path for _, path in pictures], snapshot, out)
 
 

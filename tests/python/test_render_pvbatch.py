@@ -2,8 +2,11 @@
 """./vc render with ParaView's pvbatch: the coupler runs the short pile scenario
 of the end-to-end tests and tools/render.py --renderer pvbatch draws its last
 DEM snapshot from results.xdmf into a PNG that must not be blank. Skipped
-(exit code 77) where pvbatch is not on PATH: Debian's paraview package is
-large and not a dependency of the project.
+(exit code 77, with the reason) where pvbatch is not on PATH (Debian's
+paraview package is large and not a dependency of the project), where it has
+no X display to draw into (no $DISPLAY, and no xvfb-run with xauth), or
+where it does not start at all; a failure of the drawing itself fails, with
+pvbatch's messages.
 
     test_render_pvbatch.py COUPLER SOURCE_DIR OUT_DIR
 """
@@ -12,28 +15,48 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 
 from dfc_test_support import require_modules
 
-if shutil.which("pvbatch") is None:
+COUPLER, SOURCE, OUT = sys.argv[1:4]
+sys.path.insert(0, os.path.join(SOURCE, "tools"))
+import render  # noqa: E402
+
+if render.PVBATCH is None:
     print("SKIPPED: pvbatch (ParaView's Python) is not on PATH; tools/render.py uses its matplotlib path here")
     sys.exit(77)
-if not os.environ.get("DISPLAY") and shutil.which("xvfb-run") is None:
-    print("SKIPPED: no X display and no xvfb-run; Debian's pvbatch renders through X")
+if render.virtual_display_missing():
+    print(f"SKIPPED: Debian's pvbatch renders through X: {render.virtual_display_missing()}")
     sys.exit(77)
 require_modules("numpy", "h5py", "matplotlib")
+# Whether pvbatch starts at all here (a machine whose ParaView or X cannot
+# open a window is not this test's subject): a script that only prints.
+with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as probe:
+    probe.write("print('pvbatch runs')\n")
+started = subprocess.run(([] if os.environ.get("DISPLAY") else ["xvfb-run", "-a"]) + [render.PVBATCH, probe.name],
+                         capture_output=True, text=True)
+os.unlink(probe.name)
+if started.returncode != 0 or "pvbatch runs" not in started.stdout:
+    print(f"SKIPPED: pvbatch does not start here (exit status {started.returncode}): {started.stderr.strip()[-2000:]}")
+    sys.exit(77)
 
 import matplotlib.image  # noqa: E402
 import numpy as np  # noqa: E402
 
-COUPLER, SOURCE, OUT = sys.argv[1:4]
 shutil.rmtree(OUT, ignore_errors=True)
 run_dir = os.path.join(OUT, "run")
 subprocess.run([COUPLER, "run", os.path.join(SOURCE, "tests/e2e/scenarios/pile_short.json"), "--out", run_dir, "--no-progress"], check=True)
 pictures = os.path.join(OUT, "pictures")
-drawn = subprocess.run([sys.executable, os.path.join(SOURCE, "tools/render.py"), run_dir, "--snapshot", "-1", "--renderer", "pvbatch",
-                        "--out", pictures], check=True, capture_output=True, text=True).stdout
+render = subprocess.run([sys.executable, os.path.join(SOURCE, "tools/render.py"), run_dir, "--snapshot", "-1", "--renderer", "pvbatch",
+                         "--out", pictures], capture_output=True, text=True)
+drawn = render.stdout
 print(drawn)
+if render.returncode != 0:
+    # The reason is in pvbatch's (or xvfb-run's) own words: without it a CI log
+    # says only "exit status 1".
+    print(render.stderr, file=sys.stderr)
+    sys.exit(f"tools/render.py --renderer pvbatch failed with exit status {render.returncode} (its stderr above)")
 png = [name for name in os.listdir(pictures) if name.endswith(".png")]
 if len(png) != 1:
     sys.exit(f"expected one PNG in {pictures}, found {png}")
