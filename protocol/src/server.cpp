@@ -124,7 +124,7 @@ void print_advance_statistics(std::string_view name, const AdvanceStatistics& st
 /// server that declares 1.7 or later; nullopt when the variable is unset or
 /// empty. A fixture playing an older server ignores it, as such a server would.
 std::optional<authentication::CurveKeyPair> keys_from_environment(const ServerProgram& program) {
-  if (program.declared_minor < authentication::kSinceMinor) return std::nullopt;
+  if (program.declared_minor < authentication::kSinceMinor || !program.authentication) return std::nullopt;
   const char* path = std::getenv(std::string(authentication::kKeyFileVariable).c_str());
   if (path == nullptr || *path == '\0') return std::nullopt;
   try {
