@@ -19,7 +19,7 @@ void StopRequest::check(const std::string& pending) {
 
 Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
                          std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop,
-                         const protocol::RunKeyFile& run_keys)
+                         const protocol::RunKeyFile* run_keys)
     : spec_(spec), stop_(&stop), context_(&context), hang_timeout_(hang_timeout) {
   std::string endpoint = spec.endpoint;
   std::optional<std::string> server_key;
@@ -29,15 +29,16 @@ Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, c
     // The key file's path goes in the environment, not among the arguments:
     // a server that knows no DFC_KEY_FILE (one before 1.7) still starts.
     process_ = std::make_unique<ChildProcess>(spec.executable, args, log_dir / (spec.slot + ".stderr.log"),
-                                              log_dir / (spec.slot + ".stdout.log"), std::vector{run_keys.environment_entry()});
+                                              log_dir / (spec.slot + ".stdout.log"),
+                                              run_keys ? std::vector{run_keys->environment_entry()} : std::vector<std::string>());
     const auto listening = process_->wait_for_endpoint(startup_timeout, spec.slot + " server '" + spec.program + "'",
                                                        [this] { stop_->check("the start of server " + label()); });
     endpoint = listening.endpoint;
     if (const auto problem = protocol::endpoint_problem(endpoint))
       throw ConfigError(spec.key_path() + ".program", "'" + spec.program + "' printed the line 'DFC-LISTENING " + echoed(endpoint, kMaxEchoedPathBytes) + "', which is no endpoint: " +
                                                           *problem + "; a protocol v1 server prints the endpoint it bound (SPEC.md §2)");
-    authenticated_ = listening.authenticated;
-    if (authenticated_) server_key = run_keys.keys().public_key;
+    authenticated_ = listening.authenticated && run_keys != nullptr;
+    if (authenticated_) server_key = run_keys->keys().public_key;
   } else if (!spec.key_file.empty()) {
     try {
       server_key = protocol::read_key_file(spec.key_file).public_key;

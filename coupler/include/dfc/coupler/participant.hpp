@@ -60,14 +60,15 @@ class StopRequest {
 class Participant {
  public:
   /// Starts the server, naming `run_keys` in its environment (DFC_KEY_FILE,
-  /// SPEC.md §2.1), or connects to spec.endpoint with spec.key_file's key when
-  /// the scenario names one. Server logs go to `log_dir`.
+  /// SPEC.md §2.1; without them hello refuses a started server of 1.7 or
+  /// later), or connects to spec.endpoint with spec.key_file's key when the
+  /// scenario names one. Server logs go to `log_dir`.
   /// Every wait for it gives up through `stop` (which must outlive this), and,
   /// once it announced a heartbeat (SPEC.md §9.1), when it has answered
   /// neither the request nor a ping for `hang_timeout` (run.hang_timeout_s).
   Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
               std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop,
-              const protocol::RunKeyFile& run_keys);
+              const protocol::RunKeyFile* run_keys = nullptr);
 
   /// hello, then watches the heartbeat the server announced (none from a server
   /// before 1.6). Refuses a server it started that declares 1.7 or later but

@@ -32,8 +32,8 @@ struct ParticipantSpec {
   std::filesystem::path executable;       ///< resolved path (empty when connecting to an endpoint)
   std::vector<std::string> args;          ///< extra command-line arguments
   std::string endpoint;                   ///< connect here instead of starting a process
-  std::filesystem::path key_file;         ///< with endpoint: that server's key file (SPEC.md §2.1); empty: none
   nlohmann::json config;                  ///< the section sent in `configure` (gravity injected)
+  std::filesystem::path key_file;         ///< with endpoint: that server's key file (SPEC.md §2.1); empty: none
   [[nodiscard]] std::string key_path() const { return "participants." + slot; }
 };
 
