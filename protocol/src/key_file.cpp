@@ -50,12 +50,12 @@ std::string read_all(int fd, const std::filesystem::path& path) {
 
 /// The key `name` of `document`: 40 characters of Z85 that decode to 32 bytes.
 std::string z85_key(const nlohmann::json& document, const char* name, const std::filesystem::path& path) {
-  const auto it = document.find(name);
-  const bool text = it != document.end() && it->is_string() && it->get<std::string>().size() == kZ85KeyCharacters;
+  std::string key;
+  if (const auto it = document.find(name); it != document.end() && it->is_string()) key = it->get<std::string>();
   std::array<std::uint8_t, 32> bytes{};
-  if (!text || zmq_z85_decode(bytes.data(), it->get<std::string>().c_str()) == nullptr)
+  if (key.size() != kZ85KeyCharacters || zmq_z85_decode(bytes.data(), key.c_str()) == nullptr)
     throw UserError("key file '" + path.string() + "' needs '" + name + "', 40 characters of Z85 text (a 32-byte CURVE key); write a new file with 'coupler keys FILE'");
-  return it->get<std::string>();
+  return key;
 }
 
 }  // namespace
@@ -77,7 +77,11 @@ authentication::CurveKeyPair read_key_file(const std::filesystem::path& path) {
   struct stat status {};
   if (::fstat(fd.get(), &status) != 0) throw UserError(system_error(path, "cannot look at it"));
   if (!S_ISREG(status.st_mode)) throw UserError("key file '" + path.string() + "' is not a regular file; give the path of a key file");
-  // The permissions are what keeps the key secret (SPEC.md §2.1).
+  // The permissions are what keeps the key secret (SPEC.md §2.1): a file of
+  // another user's (which root could read) is that user's key, not ours.
+  if (status.st_uid != ::geteuid())
+    throw UserError("key file '" + path.string() + "' belongs to another user (uid " + std::to_string(status.st_uid) +
+                    "), who may know the key; use a key file of your own ('coupler keys FILE')");
   if ((status.st_mode & 077) != 0)
     throw UserError("key file '" + path.string() + "' has mode " + mode_text(status.st_mode) +
                     ": others than its owner may access it, and whoever reads it can talk to the server; make it private with 'chmod 600 " +

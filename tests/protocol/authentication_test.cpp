@@ -79,6 +79,16 @@ TEST(KeyFile, ThatOthersMayReadIsRefusedNamingTheFix) {
   EXPECT_NE(error.find("chmod 600 " + file.string()), std::string::npos) << error;
 }
 
+// Root may read any user's file: a key file of another user's is still refused.
+TEST(KeyFile, OfAnotherUserIsRefused) {
+  if (::geteuid() != 0) GTEST_SKIP() << "only root can give a file to another user";
+  const ScratchFolder folder("other_user");
+  const fs::path file = folder.path() / "server.key";
+  write_key_file(file, authentication::generate_key_pair());
+  ASSERT_EQ(::chown(file.c_str(), 65534, 65534), 0);
+  EXPECT_NE(error_reading(file).find("belongs to another user (uid 65534)"), std::string::npos) << error_reading(file);
+}
+
 TEST(KeyFile, WhoseKeysDoNotBelongTogetherIsRefused) {
   const ScratchFolder folder("mismatched");
   const fs::path file = folder.path() / "server.key";

@@ -21,7 +21,8 @@ void write_key_file(const std::filesystem::path& path, const authentication::Cur
 
 /// Reads the key pair at `path`. Throws dfc::UserError whose sentence names
 /// the path, what is wrong and the fix: a missing or unreadable file, one
-/// that group or others may access ("chmod 600"), or one whose content is not
+/// that belongs to another user or that group or others may access
+/// ("chmod 600"), or one whose content is not
 /// a key file (the keys are not Z85 text of 32 bytes, or do not belong together).
 [[nodiscard]] authentication::CurveKeyPair read_key_file(const std::filesystem::path& path);
 
