@@ -1,6 +1,5 @@
 #include "dfc/coupler/coupled_run.hpp"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +18,7 @@
 #include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
+#include "dfc/common/temporary_folder.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/coupler/progress_line.hpp"
 #include "dfc/coupler/results_writer.hpp"
@@ -519,8 +519,10 @@ std::string summary_text(const Scenario& scenario, const LoopState& loop, const 
 }  // namespace
 
 void check_scenario(const Scenario& scenario, std::ostream& log) {
-  const fs::path log_dir = fs::temp_directory_path() / ("dfc-check-" + std::to_string(::getpid()));
-  fs::create_directories(log_dir);
+  // A new folder of mode 0700 that no other user can have made first: it holds
+  // the servers' logs and their key file; removed at the end, as it was made.
+  const TemporaryFolder folder("dfc-check-");
+  const fs::path& log_dir = folder.path();
   const protocol::RunKeyFile run_keys(log_dir);  // check's servers are as private as a run's
   zmq::context_t context(1);
   StopRequest never(nullptr);  // check installs no signal handler
@@ -536,11 +538,9 @@ void check_scenario(const Scenario& scenario, std::ostream& log) {
         << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s\n";
   } catch (...) {
     for (auto& p : participants) p->stop();
-    fs::remove_all(log_dir);
     throw;
   }
   for (auto& p : participants) p->stop();
-  fs::remove_all(log_dir);
 }
 
 int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostream& log, std::ostream& error_log) {

@@ -1,10 +1,5 @@
 #include "context.hpp"
 
-#include <cerrno>
-#include <cstdlib>
-#include <cstring>
-
-#include "dfc/common/errors.hpp"
 #include "dfc/protocol/authentication.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/transport.hpp"
@@ -22,17 +17,6 @@ bool is_port(std::string_view text) {
   return port > 0 && port < 65536;
 }
 }  // namespace
-
-TemporaryFolder::TemporaryFolder() {
-  std::string pattern = (std::filesystem::temp_directory_path() / "dfc-conformance-XXXXXX").string();
-  if (::mkdtemp(pattern.data()) == nullptr) throw UserError("cannot make a temporary folder for the key file: " + std::string(std::strerror(errno)));
-  path_ = pattern;
-}
-
-TemporaryFolder::~TemporaryFolder() {
-  std::error_code ignored;
-  std::filesystem::remove_all(path_, ignored);
-}
 
 Context::Context(Options options) : options_(std::move(options)), run_keys_(key_folder_.path()) {}
 

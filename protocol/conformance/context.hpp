@@ -15,6 +15,7 @@
 
 #include "check.hpp"
 #include "dfc/common/subprocess.hpp"
+#include "dfc/common/temporary_folder.hpp"
 #include "dfc/protocol/client.hpp"
 #include "dfc/protocol/run_key_file.hpp"
 #include "options.hpp"
@@ -25,20 +26,6 @@ namespace dfc::conformance {
 class ServerGone : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
-};
-
-/// A folder of this process's own under the system's temporary folder,
-/// removed with everything in it when this object goes away.
-class TemporaryFolder {
- public:
-  TemporaryFolder();
-  ~TemporaryFolder();
-  TemporaryFolder(const TemporaryFolder&) = delete;
-  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
-  [[nodiscard]] const std::filesystem::path& path() const noexcept { return path_; }
-
- private:
-  std::filesystem::path path_;
 };
 
 /// Lines of a server's stderr shown after a failure.
@@ -116,7 +103,7 @@ class Context {
   Options options_;
   /// The key file every server of this run is started with, in a folder of
   /// the checker's own (removed with it).
-  TemporaryFolder key_folder_;
+  TemporaryFolder key_folder_{"dfc-conformance-"};
   protocol::RunKeyFile run_keys_;
   bool authenticated_ = false;
   zmq::context_t zmq_context_{1};
