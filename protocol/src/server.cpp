@@ -167,7 +167,7 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
   const auto heartbeat = start_heartbeat(context, endpoint, program, liveness, session.version(), keys);
   if (heartbeat) session.set_heartbeat_endpoint(heartbeat->endpoint());
   if (keys) std::cout << authentication::kAnnouncement << "\n";
-  else if (program.declared_minor >= authentication::kSinceMinor)
+  else if (program.declared_minor >= authentication::kSinceMinor && program.authentication)
     std::cerr << program.name << ": no " << authentication::kKeyFileVariable << " in the environment: any process on this host that reaches "
               << endpoint << " can talk to this server (SPEC.md section 2.1)\n";
   std::cout << kListeningMarker << endpoint << std::endl;
