@@ -126,9 +126,10 @@ double run_seconds(const fs::path& dir, const nlohmann::json& scenario) {
 
 // The coupled pile (DEM + FDM): while it runs, its key file is private, the
 // servers' command lines hold no key, and strangers on all four sockets (two
-// main, two heartbeats) get no answer; the run ends as fast as one without
-// them (within twice its time and a second: the two cores are shared with
-// the strangers' own handshakes).
+// main, two heartbeats) get no answer; the run ends about as fast as one
+// without them. The bound (three times its time and two seconds) leaves room
+// for a shared 2-core machine and the strangers' own handshakes; a server
+// stalled by them would end the run after run.hang_timeout_s (10 s) instead.
 TEST(Authentication, StrangersGetNoAnswerAndDoNotSlowTheRun) {
   const int exchanges = 1000;  // the pile reaches its end (an unstable overlap) near 1050
   const double undisturbed = run_seconds(fresh_directory("authentication_undisturbed"), pile_scenario(exchanges));
@@ -168,7 +169,7 @@ TEST(Authentication, StrangersGetNoAnswerAndDoNotSlowTheRun) {
   EXPECT_NE(output.find("finished: " + std::to_string(exchanges) + " exchanges"), std::string::npos) << output;
   EXPECT_GT(strangers.attempts(), 20);
   EXPECT_EQ(strangers.answers(), 0);
-  EXPECT_LT(disturbed, 2.0 * undisturbed + 1.0) << "undisturbed " << undisturbed << " s, with strangers " << disturbed << " s";
+  EXPECT_LT(disturbed, 3.0 * undisturbed + 2.0) << "undisturbed " << undisturbed << " s, with strangers " << disturbed << " s";
   std::cout << "pile of " << exchanges << " exchanges: " << undisturbed << " s alone, " << disturbed << " s with " << strangers.attempts()
             << " stranger attempts, " << strangers.answers() << " answered\n";
   EXPECT_FALSE(fs::exists(key_file)) << "the run's key file is removed when the run ends";
