@@ -86,11 +86,15 @@ void Participant::fail(const std::exception& error, const std::string& doing) {
   } else if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr) {
     message = "server " + label() + " did not answer while " + doing + " (" + error.what() +
               "); it is hung or too slow: raise run.deadline_s if it is only slow";
-    // A server started by hand with another key than the scenario names, or
-    // with one where it names none, drops every message unanswered (SPEC.md §2.1).
+    // A server started by hand that holds another key than the scenario names,
+    // or none where it names one, or one where it names none, drops every
+    // message unanswered (SPEC.md §2.1).
     if (!process_ && !greeted_)
-      message += "; or it was started with a key file (DFC_KEY_FILE) that " +
-                 (authenticated_ ? spec_.key_path() + ".key_file does not name" : "the scenario does not name in " + spec_.key_path() + ".key_file");
+      message += authenticated_ ? "; or it does not hold the key of " + spec_.key_path() +
+                                      ".key_file: it was started with another DFC_KEY_FILE, or with none, or it is a server before protocol 1.7, "
+                                      "which knows no key (then remove key_file)"
+                                : "; or it was started with a key file (DFC_KEY_FILE) that the scenario does not name in " + spec_.key_path() +
+                                      ".key_file";
   }
   if (const auto* remote = dynamic_cast<const protocol::RemoteError*>(&error))
     message = "server " + label() + " refused while " + doing + ": [" + remote->code() + "] " + remote->what();

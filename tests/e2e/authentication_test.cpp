@@ -203,6 +203,17 @@ std::string listening_endpoint(const fs::path& log) {
   return "";
 }
 
+/// Starts the fixture server as a user would, with DFC_KEY_FILE=dir/server.key
+/// and `args`; its stdout and stderr go to dir/<name>.log.
+pid_t start_server_by_hand(const fs::path& dir, const std::string& name, const std::vector<std::string>& args) {
+  std::vector<std::string> argv{(bin_dir() / "conformance_fixture_server").string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  ::setenv("DFC_KEY_FILE", (dir / "server.key").c_str(), 1);  // inherited by the server alone: the coupler is started after unsetenv
+  const pid_t pid = start_command(argv, dir / (name + ".log"));
+  ::unsetenv("DFC_KEY_FILE");
+  return pid;
+}
+
 // A server started by hand with DFC_KEY_FILE: the run reaches it with the key
 // file the scenario names; a scenario that names none gets no answer, and
 // the coupler's message says which scenario key to set.
@@ -212,13 +223,7 @@ TEST(Authentication, ServerStartedByHandIsReachedWithTheKeyFileTheScenarioNames)
   ASSERT_EQ(keys.exit_status, 0) << keys.output;
   EXPECT_EQ(permissions_of(dir / "server.key"), 0600u);
 
-  const auto start_server = [&](const std::string& name) {
-    ::setenv("DFC_KEY_FILE", (dir / "server.key").c_str(), 1);  // inherited by the server alone: the coupler below is run after unsetenv
-    const pid_t pid = start_command({(bin_dir() / "conformance_fixture_server").string()}, dir / (name + ".log"));
-    ::unsetenv("DFC_KEY_FILE");
-    return pid;
-  };
-  const pid_t keyed = start_server("keyed");
+  const pid_t keyed = start_server_by_hand(dir, "keyed", {});
   const std::string endpoint = listening_endpoint(dir / "keyed.log");
   EXPECT_NE(read_text(dir / "keyed.log").find("DFC-AUTHENTICATION curve"), std::string::npos);
   const auto with_key = run_scenario_file(fixture_scenario(dir, {{"endpoint", endpoint}, {"key_file", "server.key"}}), dir / "with_key");
@@ -226,13 +231,37 @@ TEST(Authentication, ServerStartedByHandIsReachedWithTheKeyFileTheScenarioNames)
   EXPECT_NE(with_key.output.find("finished: 3 exchanges"), std::string::npos) << with_key.output;
   EXPECT_EQ(wait_command(keyed, 10s), 0) << "the coupler's shutdown ends the server";
 
-  const pid_t unnamed = start_server("unnamed");
+  const pid_t unnamed = start_server_by_hand(dir, "unnamed", {});
   const std::string other_endpoint = listening_endpoint(dir / "unnamed.log");
   const auto without_key = run_scenario_file(fixture_scenario(dir, {{"endpoint", other_endpoint}}), dir / "without_key");
   ::kill(unnamed, SIGKILL);
   (void)wait_command(unnamed, 10s);
   EXPECT_EQ(without_key.exit_status, 1) << without_key.output;
   EXPECT_NE(without_key.output.find("the scenario does not name in participants.continuum.key_file"), std::string::npos) << without_key.output;
+}
+
+// A user's hand-started server of protocol 1.0 knows no key (SPEC.md §2.1):
+// a scenario without key_file runs with it, unauthenticated, as before; one
+// that names a key file gets no answer, and the message says to remove it.
+TEST(Authentication, HandStartedServerOf1_0RunsWithoutKeyFileAndNamesItWhenGivenOne) {
+  const auto dir = fresh_directory("authentication_by_hand_1_0");
+  ASSERT_EQ(run_command({coupler(), "keys", (dir / "server.key").string()}, 10s).exit_status, 0);
+
+  const pid_t plain = start_server_by_hand(dir, "plain", {"--protocol-minor", "0"});
+  const std::string endpoint = listening_endpoint(dir / "plain.log");
+  EXPECT_EQ(read_text(dir / "plain.log").find("DFC-AUTHENTICATION"), std::string::npos) << "a 1.0 server ignores DFC_KEY_FILE";
+  const auto without_key = run_scenario_file(fixture_scenario(dir, {{"endpoint", endpoint}}), dir / "without_key");
+  EXPECT_EQ(without_key.exit_status, 0) << without_key.output;
+  EXPECT_EQ(wait_command(plain, 10s), 0);
+
+  const pid_t keyless = start_server_by_hand(dir, "keyless", {"--protocol-minor", "0"});
+  const std::string other_endpoint = listening_endpoint(dir / "keyless.log");
+  const auto with_key = run_scenario_file(fixture_scenario(dir, {{"endpoint", other_endpoint}, {"key_file", "server.key"}}), dir / "with_key");
+  ::kill(keyless, SIGKILL);
+  (void)wait_command(keyless, 10s);
+  EXPECT_EQ(with_key.exit_status, 1) << with_key.output;
+  EXPECT_NE(with_key.output.find("or it does not hold the key of participants.continuum.key_file"), std::string::npos) << with_key.output;
+  EXPECT_NE(with_key.output.find("(then remove key_file)"), std::string::npos) << with_key.output;
 }
 
 // The coupler refuses a server it started that declares 1.7 but ignores
