@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,6 +24,7 @@
 
 #include "dfc/common/command_line.hpp"
 #include "dfc/common/errors.hpp"
+#include "dfc/protocol/authentication.hpp"
 #include "dfc/protocol/codec.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/transport.hpp"
@@ -38,6 +40,9 @@ struct Options {
   std::int64_t monitors = 40;   ///< scalar monitors in each reply (the DEM's pile run sends about 40)
   std::string bind = "tcp://127.0.0.1:*";  ///< the coupler's servers bind loopback TCP by default
   double work_us = 0.0;  ///< the child computes this long before each reply, as a solver would (not counted)
+  /// CURVE, as the coupler's servers since protocol 1.7 (SPEC.md §2.1), or NULL (no authentication, as before).
+  bool curve = true;
+  dfc::protocol::authentication::CurveKeyPair server_keys;  ///< made before the fork, so both processes hold them
 };
 
 /// Keeps the CPU busy for `microseconds`, as a solver's step would.
@@ -49,14 +54,18 @@ void compute_for(double microseconds) {
 
 void print_help() {
   std::cout << "zmq_round_trip — wall time of one protocol round trip between two processes\n\n"
-               "Usage: zmq_round_trip [--round-trips N] [--nodes N] [--monitors N] [--server-work-us T] [--bind ENDPOINT]\n\n"
+               "Usage: zmq_round_trip [--round-trips N] [--nodes N] [--monitors N] [--server-work-us T] [--bind ENDPOINT]\n"
+               "                      [--mechanism curve|null]\n\n"
                "A child process serves a ROUTER socket on loopback TCP; the parent sends N advance-like\n"
                "requests (one [nodes,3] f64 array) and waits for each advanced-like reply (one [nodes,3]\n"
                "array and `monitors` numbers), as the coupler does with each server. Prints the mean,\n"
                "the median and the 90th percentile in microseconds. With --server-work-us the child computes for T us\n"
                "before each reply, as a solver does, and T is not counted: while it computes, the parent sleeps\n"
                "in its receive, and waking it is part of what a round trip costs.\n"
-               "Defaults: --round-trips 20000 --nodes 112 --monitors 40 --bind tcp://127.0.0.1:* (ipc://PATH: a Unix socket).\n";
+               "--mechanism: ZeroMQ CURVE, as the coupler and the servers it starts use since protocol 1.7, or NULL\n"
+               "(no authentication, as before 1.7; SPEC.md section 2.1).\n"
+               "Defaults: --round-trips 20000 --nodes 112 --monitors 40 --bind tcp://127.0.0.1:* (ipc://PATH: a Unix socket)\n"
+               "--mechanism curve.\n";
 }
 
 Message advance_like(std::int64_t seq, std::int64_t nodes) {
@@ -90,6 +99,7 @@ int serve(int endpoint_pipe, const Options& options) {
   zmq::socket_t socket(context, zmq::socket_type::router);
   const dfc::protocol::Limits limits;
   dfc::protocol::configure_socket(socket, limits);
+  dfc::protocol::authentication::secure_server_socket(socket, options.curve ? std::optional(options.server_keys) : std::nullopt);
   socket.bind(options.bind);
   const std::string endpoint = socket.get(zmq::sockopt::last_endpoint);
   if (::write(endpoint_pipe, endpoint.c_str(), endpoint.size() + 1) < 0) return 1;
@@ -111,6 +121,7 @@ int measure(const std::string& endpoint, const Options& options) {
   zmq::socket_t socket(context, zmq::socket_type::dealer);
   const dfc::protocol::Limits limits;
   dfc::protocol::configure_socket(socket, limits);
+  dfc::protocol::authentication::secure_client_socket(socket, options.curve ? std::optional(options.server_keys.public_key) : std::nullopt);
   socket.connect(endpoint);
   std::vector<double> microseconds;
   microseconds.reserve(static_cast<std::size_t>(options.round_trips));
@@ -130,8 +141,8 @@ int measure(const std::string& endpoint, const Options& options) {
   for (const double value : steady) sum += value;
   std::sort(steady.begin(), steady.end());
   const auto percentile = [&](double p) { return steady[static_cast<std::size_t>(p * static_cast<double>(steady.size() - 1))]; };
-  std::printf("round trips %zu (after %zu warm-up), nodes %lld, monitors %lld\n", steady.size(), warm_up,
-              static_cast<long long>(options.nodes), static_cast<long long>(options.monitors));
+  std::printf("round trips %zu (after %zu warm-up), nodes %lld, monitors %lld, mechanism %s\n", steady.size(), warm_up,
+              static_cast<long long>(options.nodes), static_cast<long long>(options.monitors), options.curve ? "curve" : "null");
   std::printf("round_trip_us mean %.1f median %.1f p90 %.1f\n", sum / static_cast<double>(steady.size()), percentile(0.5), percentile(0.9));
   return 0;
 }
@@ -154,8 +165,11 @@ int main(int argc, char** argv) {
       else if (arg == "--bind") options.bind = value;
       else if (arg == "--server-work-us") options.work_us = dfc::parse_number_option(arg, value, dfc::Bounds{0.0, 1e6});
       else if (arg == "--monitors") options.monitors = static_cast<std::int64_t>(dfc::parse_count_option(arg, value, 0, 10'000));
+      else if (arg == "--mechanism" && (value == "curve" || value == "null")) options.curve = value == "curve";
+      else if (arg == "--mechanism") throw dfc::UserError("--mechanism takes curve or null, not '" + value + "'");
       else throw dfc::UserError("unknown option '" + std::string(arg) + "'; see --help");
     }
+    if (options.curve) options.server_keys = dfc::protocol::authentication::generate_key_pair();
     int endpoint_pipe[2];
     if (::pipe(endpoint_pipe) != 0) throw std::runtime_error("pipe failed");
     const pid_t child = ::fork();

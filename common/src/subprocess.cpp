@@ -7,7 +7,9 @@
 #include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -24,7 +26,7 @@ namespace {
 
 std::string system_error(const std::string& what) { return what + ": " + std::strerror(errno); }
 
-// execv needs a path; searching PATH here, before fork, keeps the child to
+// execve needs a path; searching PATH here, before fork, keeps the child to
 // async-signal-safe calls only (the supervisor has ZeroMQ I/O threads running).
 std::string resolve_executable(const std::string& name) {
   if (name.find('/') != std::string::npos) return name;
@@ -41,6 +43,27 @@ std::string resolve_executable(const std::string& name) {
   throw UserError("cannot run '" + name + "': not found in PATH");
 }
 
+/// This process's environment with `extra` ("NAME=VALUE") added, replacing
+/// entries of the same name; built before fork, like the path above.
+std::vector<std::string> child_environment(const std::vector<std::string>& extra) {
+  const auto name_of = [](std::string_view entry) { return entry.substr(0, entry.find('=')); };
+  std::vector<std::string> entries;
+  for (char** entry = environ; entry != nullptr && *entry != nullptr; ++entry) {
+    const std::string_view text(*entry);
+    const bool replaced = std::any_of(extra.begin(), extra.end(), [&](const std::string& e) { return name_of(e) == name_of(text); });
+    if (!replaced) entries.emplace_back(text);
+  }
+  entries.insert(entries.end(), extra.begin(), extra.end());
+  return entries;
+}
+
+std::vector<char*> c_strings(std::vector<std::string>& texts) {
+  std::vector<char*> pointers;
+  for (auto& text : texts) pointers.push_back(text.data());
+  pointers.push_back(nullptr);
+  return pointers;
+}
+
 std::string join(const std::vector<std::string>& argv) {
   std::string text;
   for (const auto& arg : argv) text += (text.empty() ? "" : " ") + arg;
@@ -49,16 +72,18 @@ std::string join(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-Subprocess::Subprocess(const std::vector<std::string>& argv, const std::filesystem::path& stderr_log) : command_(join(argv)) {
+Subprocess::Subprocess(const std::vector<std::string>& argv, const std::filesystem::path& stderr_log,
+                       const std::vector<std::string>& environment)
+    : command_(join(argv)) {
   if (argv.empty()) throw UserError("no command given");
   const std::string executable = resolve_executable(argv[0]);
   std::vector<std::string> args = argv;
-  std::vector<char*> c_argv;
-  for (auto& arg : args) c_argv.push_back(arg.data());
-  c_argv.push_back(nullptr);
+  const std::vector<char*> c_argv = c_strings(args);
+  std::vector<std::string> env = child_environment(environment);
+  const std::vector<char*> c_env = c_strings(env);
 
   int out_pipe[2];
-  int exec_pipe[2];  // reports a failed execv back to us: stays empty when exec succeeds (CLOEXEC)
+  int exec_pipe[2];  // reports a failed execve back to us: stays empty when exec succeeds (CLOEXEC)
   if (::pipe2(out_pipe, O_CLOEXEC) != 0) throw UserError(system_error("cannot create a pipe"));
   UniqueFd out_read(out_pipe[0]);
   UniqueFd out_write(out_pipe[1]);
@@ -86,7 +111,7 @@ Subprocess::Subprocess(const std::vector<std::string>& argv, const std::filesyst
     ::dup2(null_in.get(), STDIN_FILENO);
     ::dup2(out_write.get(), STDOUT_FILENO);
     ::dup2(stderr_file_.get(), STDERR_FILENO);
-    ::execv(executable.c_str(), c_argv.data());
+    ::execve(executable.c_str(), c_argv.data(), c_env.data());
     const int error = errno;
     (void)!::write(exec_write.get(), &error, sizeof error);
     ::_exit(127);

@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/protocol/authentication.hpp"
+#include "dfc/protocol/transport.hpp"
 
 namespace dfc::coupler {
 
@@ -20,26 +22,28 @@ std::vector<std::string> command_line(const std::filesystem::path& executable, c
 }  // namespace
 
 ChildProcess::ChildProcess(const std::filesystem::path& executable, const std::vector<std::string>& args,
-                           const std::filesystem::path& stderr_log, const std::filesystem::path& stdout_log)
-    : stderr_log_(stderr_log), stdout_log_(stdout_log), process_(command_line(executable, args), stderr_log) {}
+                           const std::filesystem::path& stderr_log, const std::filesystem::path& stdout_log,
+                           const std::vector<std::string>& environment)
+    : stderr_log_(stderr_log), stdout_log_(stdout_log), process_(command_line(executable, args), stderr_log, environment) {}
 
 ChildProcess::~ChildProcess() {
   kill();
   if (stdout_copier_.joinable()) stdout_copier_.join();
 }
 
-std::string ChildProcess::wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label,
-                                            const std::function<void()>& while_waiting) {
-  const std::string marker = "DFC-LISTENING ";
+ChildProcess::Listening ChildProcess::wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label,
+                                                        const std::function<void()>& while_waiting) {
   const auto until = std::chrono::steady_clock::now() + timeout;
+  bool authenticated = false;
   while (true) {
     while_waiting();
     // Short reads so that an exit is noticed within 100 ms.
     if (const auto line = process_.read_line(std::chrono::milliseconds(100))) {
-      if (line->rfind(marker, 0) == 0) {
+      if (line->starts_with(protocol::kListeningMarker)) {
         start_stdout_copier();
-        return line->substr(marker.size());
+        return {line->substr(protocol::kListeningMarker.size()), authenticated};
       }
+      if (*line == protocol::authentication::kAnnouncement) authenticated = true;
       continue;  // some other output before the marker: ignore it
     }
     if (process_.stdout_closed()) (void)wait_exit(std::chrono::milliseconds(500));

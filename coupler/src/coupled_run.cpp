@@ -1,6 +1,5 @@
 #include "dfc/coupler/coupled_run.hpp"
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +18,7 @@
 #include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/common/json_text.hpp"
+#include "dfc/common/temporary_folder.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/coupler/progress_line.hpp"
 #include "dfc/coupler/results_writer.hpp"
@@ -28,6 +28,7 @@
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 #include "dfc/protocol/progress_monitors.hpp"
+#include "dfc/protocol/run_key_file.hpp"
 
 namespace dfc::coupler {
 
@@ -210,13 +211,14 @@ std::string shown_monitors(const ProgressMonitors& progress, const std::map<std:
 }
 
 /// Starts and greets the participants; configures them; throws on the first problem.
+/// The servers started get `run_keys` (SPEC.md §2.1).
 std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& context, const Scenario& scenario, const fs::path& log_dir,
-                                                            StopRequest& stop) {
+                                                            StopRequest& stop, const protocol::RunKeyFile& run_keys) {
   std::vector<std::unique_ptr<Participant>> participants;
   for (const auto& spec : scenario.participants) {
     participants.push_back(
         std::make_unique<Participant>(context, spec, log_dir, milliseconds_from_seconds(scenario.run.startup_timeout_s),
-                                      milliseconds_from_seconds(scenario.run.hang_timeout_s), stop));
+                                      milliseconds_from_seconds(scenario.run.hang_timeout_s), stop, &run_keys));
     participants.back()->hello(milliseconds(10'000));
   }
   const bool coupled = participants.size() == 2;
@@ -517,13 +519,16 @@ std::string summary_text(const Scenario& scenario, const LoopState& loop, const 
 }  // namespace
 
 void check_scenario(const Scenario& scenario, std::ostream& log) {
-  const fs::path log_dir = fs::temp_directory_path() / ("dfc-check-" + std::to_string(::getpid()));
-  fs::create_directories(log_dir);
+  // A new folder of mode 0700 that no other user can have made first: it holds
+  // the servers' logs and their key file; removed at the end, as it was made.
+  const TemporaryFolder folder("dfc-check-");
+  const fs::path& log_dir = folder.path();
+  const protocol::RunKeyFile run_keys(log_dir);  // check's servers are as private as a run's
   zmq::context_t context(1);
   StopRequest never(nullptr);  // check installs no signal handler
   std::vector<std::unique_ptr<Participant>> participants;
   try {
-    participants = start_participants(context, scenario, log_dir, never);
+    participants = start_participants(context, scenario, log_dir, never, run_keys);
     (void)progress_monitors(participants);  // a run would refuse a malformed list: so does check
     const auto [dem, continuum] = by_slot(participants);
     const ExchangeTiming timing = choose_timing(scenario, dem, continuum);
@@ -533,11 +538,9 @@ void check_scenario(const Scenario& scenario, std::ostream& log) {
         << timing.continuum_steps_per_exchange << " continuum step(s) of " << timing.dt_continuum << " s\n";
   } catch (...) {
     for (auto& p : participants) p->stop();
-    fs::remove_all(log_dir);
     throw;
   }
   for (auto& p : participants) p->stop();
-  fs::remove_all(log_dir);
 }
 
 int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostream& log, std::ostream& error_log) {
@@ -548,6 +551,8 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
   const RunCheckpoints checkpoints(out_dir);
   // Read before any server starts: a run without a checkpoint is refused at once.
   const std::optional<CouplerCheckpoint> resumed = options.resume ? std::optional(checkpoints.read()) : std::nullopt;
+  // Fresh keys for this run's servers in <out>/keys (SPEC.md §2.1), removed when the run ends.
+  const protocol::RunKeyFile run_keys(out_dir);
 
   zmq::context_t context(1);
   StopRequest stop(options.stop_requested);
@@ -574,7 +579,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
   };
   try {
     // Steps 1–2: start, greet, configure.
-    participants = start_participants(context, scenario, log_dir, stop);
+    participants = start_participants(context, scenario, log_dir, stop, run_keys);
     // Read at once: a server's malformed list fails the run before any results file exists.
     ProgressMonitors shown_progress = progress_monitors(participants);
     const auto [dem, continuum] = by_slot(participants);

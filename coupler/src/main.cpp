@@ -7,6 +7,7 @@
 //   coupler check SCENARIO.json
 //   coupler expand SCENARIO.json
 //   coupler schema
+//   coupler keys FILE
 #include <unistd.h>
 
 #include <atomic>
@@ -23,6 +24,7 @@
 #include "dfc/coupler/coupled_run.hpp"
 #include "dfc/coupler/participant.hpp"
 #include "dfc/coupler/scenario.hpp"
+#include "dfc/protocol/key_file.hpp"
 #include "dfc/protocol/message.hpp"
 
 namespace {
@@ -49,6 +51,11 @@ void print_help() {
                "      Print the scenario as the coupler reads it (includes resolved, one entry per variant), as JSON.\n"
                "  coupler schema\n"
                "      Print the JSON Schema (draft 2020-12) of scenario files (scenario.schema.json).\n"
+               "  coupler keys FILE\n"
+               "      Write a fresh key file (mode 0600) for a server started by hand: start it with\n"
+               "      DFC_KEY_FILE=FILE and name FILE in the scenario's participants.<slot>.key_file, so that\n"
+               "      only holders of FILE can talk to it (protocol/SPEC.md section 2.1). Servers the\n"
+               "      coupler starts get keys of their own per run.\n"
                "  coupler --help | --version\n\n"
                "Exit status: 0 success; 1 a server failed or the interface force balance broke\n"
                "(the message names the server; results written so far stay readable);\n"
@@ -83,6 +90,16 @@ int run_command(int argc, char** argv) {
     std::cout << dfc::sections::scenario_schema().dump(2) << "\n";
     return 0;
   }
+  if (command == "keys") {
+    if (argc != 3 || argv[2][0] == '\0') throw dfc::UserError("coupler keys takes the path of the key file to write (coupler keys FILE)");
+    std::error_code ec;
+    if (fs::symlink_status(argv[2], ec).type() != fs::file_type::not_found)
+      throw dfc::UserError(std::string("'") + argv[2] + "' exists; servers started with it would no longer be reached: remove it first or choose another path");
+    dfc::protocol::write_key_file(argv[2], dfc::protocol::authentication::generate_key_pair());
+    std::cout << "wrote " << argv[2] << " (mode 0600); start the server with " << dfc::protocol::authentication::kKeyFileVariable << "="
+              << argv[2] << " and name the file in participants.<slot>.key_file\n";
+    return 0;
+  }
   if (command == "expand") {
     if (argc != 3) throw dfc::UserError("coupler expand takes one scenario file (coupler expand SCENARIO.json)");
     nlohmann::json documents = nlohmann::json::array();
@@ -92,7 +109,7 @@ int run_command(int argc, char** argv) {
     return 0;
   }
   if (command != "run" && command != "check")
-    throw dfc::UserError("unknown command '" + std::string(command) + "'; expected 'run', 'check', 'expand' or 'schema' (see coupler --help)");
+    throw dfc::UserError("unknown command '" + std::string(command) + "'; expected 'run', 'check', 'expand', 'schema' or 'keys' (see coupler --help)");
   fs::path scenario_path;
   dfc::coupler::RunOptions options;
   for (int i = 2; i < argc; ++i) {

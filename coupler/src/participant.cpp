@@ -2,6 +2,8 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/echo.hpp"
+#include "dfc/protocol/authentication.hpp"
+#include "dfc/protocol/key_file.hpp"
 #include "dfc/protocol/transport.hpp"
 
 namespace dfc::coupler {
@@ -16,21 +18,36 @@ void StopRequest::check(const std::string& pending) {
 }
 
 Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-                         std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop)
+                         std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop,
+                         const protocol::RunKeyFile* run_keys)
     : spec_(spec), stop_(&stop), context_(&context), hang_timeout_(hang_timeout) {
   std::string endpoint = spec.endpoint;
+  std::optional<std::string> server_key;
   if (endpoint.empty()) {
     std::vector<std::string> args = spec.args;
     args.insert(args.end(), {"--bind", "tcp://127.0.0.1:*"});
+    // The key file's path goes in the environment, not among the arguments:
+    // a server that knows no DFC_KEY_FILE (one before 1.7) still starts.
     process_ = std::make_unique<ChildProcess>(spec.executable, args, log_dir / (spec.slot + ".stderr.log"),
-                                              log_dir / (spec.slot + ".stdout.log"));
-    endpoint = process_->wait_for_endpoint(startup_timeout, spec.slot + " server '" + spec.program + "'",
-                                           [this] { stop_->check("the start of server " + label()); });
+                                              log_dir / (spec.slot + ".stdout.log"),
+                                              run_keys ? std::vector{run_keys->environment_entry()} : std::vector<std::string>());
+    const auto listening = process_->wait_for_endpoint(startup_timeout, spec.slot + " server '" + spec.program + "'",
+                                                       [this] { stop_->check("the start of server " + label()); });
+    endpoint = listening.endpoint;
     if (const auto problem = protocol::endpoint_problem(endpoint))
       throw ConfigError(spec.key_path() + ".program", "'" + spec.program + "' printed the line 'DFC-LISTENING " + echoed(endpoint, kMaxEchoedPathBytes) + "', which is no endpoint: " +
                                                           *problem + "; a protocol v1 server prints the endpoint it bound (SPEC.md §2)");
+    authenticated_ = listening.authenticated && run_keys != nullptr;
+    if (authenticated_) server_key = run_keys->keys().public_key;
+  } else if (!spec.key_file.empty()) {
+    try {
+      server_key = protocol::read_key_file(spec.key_file).public_key;
+    } catch (const UserError& e) {
+      throw ConfigError(spec.key_path() + ".key_file", e.what());
+    }
+    authenticated_ = true;
   }
-  client_ = std::make_unique<protocol::SolverClient>(context, endpoint, label());
+  client_ = std::make_unique<protocol::SolverClient>(context, endpoint, label(), server_key);
   client_->connection().set_wait_hook([this] { check_alive(); });
 }
 
@@ -66,9 +83,19 @@ void Participant::fail(const std::exception& error, const std::string& doing) {
     hung_ = true;
     message = "server " + label() + " stopped answering while " + doing + ": " + hung->silence() +
               ". It is hung or stopped (SIGSTOP, a frozen node): a busy server still answers its heartbeat; run.hang_timeout_s sets how long the coupler waits";
-  } else if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr)
+  } else if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr) {
     message = "server " + label() + " did not answer while " + doing + " (" + error.what() +
               "); it is hung or too slow: raise run.deadline_s if it is only slow";
+    // A server started by hand that holds another key than the scenario names,
+    // or none where it names one, or one where it names none, drops every
+    // message unanswered (SPEC.md §2.1).
+    if (!process_ && !greeted_)
+      message += authenticated_ ? "; or it does not hold the key of " + spec_.key_path() +
+                                      ".key_file: it was started with another DFC_KEY_FILE, or with none, or it is a server before protocol 1.7, "
+                                      "which knows no key (then remove key_file)"
+                                : "; or it was started with a key file (DFC_KEY_FILE) that the scenario does not name in " + spec_.key_path() +
+                                      ".key_file";
+  }
   if (const auto* remote = dynamic_cast<const protocol::RemoteError*>(&error))
     message = "server " + label() + " refused while " + doing + ": [" + remote->code() + "] " + remote->what();
   if (process_) {
@@ -80,6 +107,13 @@ void Participant::fail(const std::exception& error, const std::string& doing) {
 void Participant::hello(std::chrono::milliseconds deadline) {
   try {
     hello_ = client_->hello("coupler", deadline);
+    greeted_ = true;
+    const auto version = protocol::parse_version(hello_.protocol_version);
+    if (process_ && !authenticated_ && version && version->second >= protocol::authentication::kSinceMinor)
+      throw ParticipantFailure("server " + label() + " declares protocol " + hello_.protocol_version + " but did not take the run's key from " +
+                               std::string(protocol::authentication::kKeyFileVariable) + " (it printed no '" +
+                               std::string(protocol::authentication::kAnnouncement) +
+                               "' line): it would answer any process on this host. A 1.7 server must authenticate (protocol/SPEC.md §2.1)");
     if (!hello_.heartbeat_endpoint.empty()) client_->connection().watch_heartbeat(*context_, hello_.heartbeat_endpoint, hang_timeout_);
   } catch (const std::exception& e) {
     fail(e, "greeting it (hello)");

@@ -69,7 +69,14 @@ ParticipantSpec read_participant(ConfigReader reader, const std::string& slot, c
   } else {
     if (reader.has("program")) reader.fail("program", "give either 'program' (start a server) or 'endpoint' (connect to a running one), not both");
     if (const auto problem = protocol::endpoint_problem(spec.endpoint)) reader.fail("endpoint", *problem);
+    if (reader.has("key_file")) {
+      const fs::path key_file = reader.string("key_file");
+      spec.key_file = key_file.is_absolute() ? key_file : scenario_dir / key_file;
+    }
   }
+  if (spec.endpoint.empty() && reader.has("key_file"))
+    reader.fail("key_file", "the coupler makes the keys of the servers it starts (program) itself, one per run; key_file names the key of a "
+                            "server started by hand (endpoint): remove it here");
   if (reader.has("args")) spec.args = reader.strings("args");
   const nlohmann::json& config = reader.raw("config");
   if (!config.is_object()) reader.fail("config", "expected an object: the section this server is configured with");

@@ -56,6 +56,7 @@ inline void expect(bool condition, const std::string& why) {
 [[nodiscard]] std::vector<Check> command_line_checks();
 [[nodiscard]] std::vector<Check> handshake_checks();
 [[nodiscard]] std::vector<Check> heartbeat_checks();
+[[nodiscard]] std::vector<Check> authentication_checks();
 [[nodiscard]] std::vector<Check> malformed_message_checks();
 [[nodiscard]] std::vector<Check> configure_checks();
 [[nodiscard]] std::vector<Check> interface_checks();

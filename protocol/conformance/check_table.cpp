@@ -8,7 +8,7 @@ namespace dfc::conformance {
 const std::vector<Check>& all_checks() {
   static const std::vector<Check> table = [] {
     std::vector<Check> checks;
-    for (auto group : {command_line_checks, handshake_checks, heartbeat_checks, malformed_message_checks, configure_checks, interface_checks,
+    for (auto group : {command_line_checks, handshake_checks, heartbeat_checks, authentication_checks, malformed_message_checks, configure_checks, interface_checks,
                        checkpoint_checks_configured, advance_checks, checkpoint_checks_running, shutdown_checks}) {
       auto more = group();
       checks.insert(checks.end(), more.begin(), more.end());

@@ -2,6 +2,7 @@
 // one; it answers ping with pong, whose body counts the requests the main
 // socket has answered, and refuses every other type. For servers that
 // declare 1.6 or later (Check::since_minor); older ones are skipped.
+#include "announced_heartbeat.hpp"
 #include "check.hpp"
 #include "context.hpp"
 #include "dfc/protocol/heartbeat.hpp"
@@ -17,7 +18,8 @@ namespace {
 
 constexpr std::string_view kLoopbackPrefix = "tcp://127.0.0.1:";
 
-/// hello_ok.heartbeat_endpoint, checked.
+}  // namespace
+
 std::string announced_endpoint(const Context& context) {
   const nlohmann::json& body = context.hello_reply->body;
   const auto it = body.find(heartbeat::endpoint_key);
@@ -31,6 +33,8 @@ std::string announced_endpoint(const Context& context) {
          "hello_ok.heartbeat_endpoint '" + endpoint + "' is not on the loopback interface the server was told to bind (tcp://127.0.0.1:*)");
   return endpoint;
 }
+
+namespace {
 
 protocol::Message ping_heartbeat(Context& context, protocol::Connection& connection, std::string_view type = protocol::type::ping) {
   protocol::Message request;
@@ -53,7 +57,7 @@ std::int64_t handled_in(const protocol::Message& pong) {
 void heartbeat_is_announced(Context& context) { (void)announced_endpoint(context); }
 
 void heartbeat_answers_ping(Context& context) {
-  protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat");
+  protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat", protocol::Limits{}, context.server_key());
   const protocol::Message first = ping_heartbeat(context, connection);
   expect_type(first, protocol::type::pong);
   const std::int64_t before = handled_in(first);
@@ -71,7 +75,7 @@ void heartbeat_answers_ping(Context& context) {
 }
 
 void heartbeat_refuses_other_types(Context& context) {
-  protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat");
+  protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat", protocol::Limits{}, context.server_key());
   expect_error(ping_heartbeat(context, connection, protocol::type::query), {"UNKNOWN_TYPE"});
 }
 

@@ -1,11 +1,12 @@
 #include "context.hpp"
 
+#include "dfc/protocol/authentication.hpp"
 #include "dfc/protocol/message.hpp"
+#include "dfc/protocol/transport.hpp"
 
 namespace dfc::conformance {
 
 namespace {
-constexpr std::string_view kListeningPrefix = "DFC-LISTENING ";
 constexpr std::string_view kLoopbackPrefix = "tcp://127.0.0.1:";
 
 bool is_port(std::string_view text) {
@@ -17,7 +18,12 @@ bool is_port(std::string_view text) {
 }
 }  // namespace
 
-Context::Context(Options options) : options_(std::move(options)) {}
+Context::Context(Options options) : options_(std::move(options)), run_keys_(key_folder_.path()) {}
+
+std::optional<std::string> Context::server_key() const {
+  if (!authenticated_) return std::nullopt;
+  return run_keys_.keys().public_key;
+}
 
 Subprocess& Context::server() {
   if (!server_) throw CheckFailure("the server was not started");
@@ -28,11 +34,13 @@ void Context::start_server() {
   std::vector<std::string> argv = options_.command;
   argv.insert(argv.end(), {"--bind", "tcp://127.0.0.1:*"});
   try {
-    server_ = std::make_unique<Subprocess>(argv);
+    server_ = std::make_unique<Subprocess>(argv, std::filesystem::path(), std::vector{run_keys_.environment_entry()});
   } catch (const std::exception& e) {
     throw CheckFailure(e.what());
   }
-  const auto line = server_->read_line(options_.timeout);
+  auto line = server_->read_line(options_.timeout);
+  authenticated_ = line && *line == protocol::authentication::kAnnouncement;
+  if (authenticated_) line = server_->read_line(options_.timeout);
   if (!line) {
     // stdout closed early usually means the process is exiting: give it a moment to say how.
     if (const auto status = server_->wait_exit(std::chrono::milliseconds(500)))
@@ -40,13 +48,14 @@ void Context::start_server() {
     throw CheckFailure("no line 'DFC-LISTENING <endpoint>' on stdout within " + std::to_string(options_.timeout.count()) +
                        " ms (is stdout flushed after it?)");
   }
-  if (!line->starts_with(kListeningPrefix))
-    throw CheckFailure("the first stdout line must be 'DFC-LISTENING <endpoint>', got '" + line->substr(0, 200) + "'");
-  endpoint_ = line->substr(kListeningPrefix.size());
+  if (!line->starts_with(protocol::kListeningMarker))
+    throw CheckFailure("the first stdout line must be 'DFC-LISTENING <endpoint>' (after '" + std::string(protocol::authentication::kAnnouncement) +
+                       "' from a server that authenticates), got '" + line->substr(0, 200) + "'");
+  endpoint_ = line->substr(protocol::kListeningMarker.size());
   if (!endpoint_.starts_with(kLoopbackPrefix) || !is_port(std::string_view(endpoint_).substr(kLoopbackPrefix.size())))
     throw CheckFailure("asked to bind tcp://127.0.0.1:*, the server reports '" + endpoint_ +
                        "'; expected the resolved endpoint tcp://127.0.0.1:<port>");
-  connection_.emplace(zmq_context_, endpoint_, "the server");
+  connection_.emplace(zmq_context_, endpoint_, "the server", protocol::Limits{}, server_key());
   // Every wait polls the process, so a crash is reported at once instead of
   // after the full deadline (SPEC.md §9).
   connection_->set_wait_hook([this] { check_still_running(); });

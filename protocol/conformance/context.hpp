@@ -4,6 +4,7 @@
 // of one run in table order.
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <set>
@@ -14,7 +15,9 @@
 
 #include "check.hpp"
 #include "dfc/common/subprocess.hpp"
+#include "dfc/common/temporary_folder.hpp"
 #include "dfc/protocol/client.hpp"
+#include "dfc/protocol/run_key_file.hpp"
 #include "options.hpp"
 
 namespace dfc::conformance {
@@ -35,14 +38,21 @@ class Context {
   [[nodiscard]] const Options& options() const noexcept { return options_; }
   [[nodiscard]] std::chrono::milliseconds timeout() const noexcept { return options_.timeout; }
 
-  /// Starts COMMAND ARGS --bind tcp://127.0.0.1:*, reads the listening line
-  /// and connects. Throws CheckFailure saying what went wrong.
+  /// Starts COMMAND ARGS --bind tcp://127.0.0.1:* with DFC_KEY_FILE naming the
+  /// checker's key file (SPEC.md §2.1), reads the listening line (and the
+  /// authentication line before it) and connects, with the key when the
+  /// server announced that it authenticates. Throws CheckFailure saying what went wrong.
   void start_server();
   [[nodiscard]] Subprocess& server();
   [[nodiscard]] bool server_started() const noexcept { return server_ != nullptr; }
   [[nodiscard]] const std::string& endpoint() const noexcept { return endpoint_; }
   /// For connections of a check's own (the heartbeat's, SPEC.md §9.1).
   [[nodiscard]] zmq::context_t& zmq_context() noexcept { return zmq_context_; }
+  /// Whether the server printed "DFC-AUTHENTICATION curve" (SPEC.md §2.1).
+  [[nodiscard]] bool authenticated() const noexcept { return authenticated_; }
+  /// The key a connection of a check's own needs: the server's public key
+  /// when it authenticates, else none.
+  [[nodiscard]] std::optional<std::string> server_key() const;
 
   /// One request with the run's deadline; its seq is assigned by the connection.
   /// Returns error replies (never throws RemoteError). Throws TimeoutError or ServerGone.
@@ -91,6 +101,11 @@ class Context {
   void check_still_running();
 
   Options options_;
+  /// The key file every server of this run is started with, in a folder of
+  /// the checker's own (removed with it).
+  TemporaryFolder key_folder_{"dfc-conformance-"};
+  protocol::RunKeyFile run_keys_;
+  bool authenticated_ = false;
   zmq::context_t zmq_context_{1};
   std::optional<protocol::Connection> connection_;
   std::unique_ptr<Subprocess> server_;

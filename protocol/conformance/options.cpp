@@ -64,10 +64,13 @@ std::string usage_text() {
 Usage: dfc_conformance [--config FILE] [--timeout S] -- COMMAND [ARGS...]
        dfc_conformance --help | --version | --list
 
-Starts `COMMAND ARGS --bind tcp://127.0.0.1:*`, reads its DFC-LISTENING line,
+Starts `COMMAND ARGS --bind tcp://127.0.0.1:*` with DFC_KEY_FILE naming a key
+file of its own (SPEC.md section 2.1), reads its DFC-LISTENING line (and the
+line 'DFC-AUTHENTICATION curve' before it: then it connects with the key),
 connects, and runs every check of the contract: handshake, version refusal,
-state ordering, malformed and oversized frames, interface exchange, step
-semantics, query, snapshot, shutdown and exit status. It also runs
+heartbeat, authentication (strangers get no answer), state ordering,
+malformed and oversized frames, interface exchange, step semantics, query,
+snapshot, shutdown and exit status. It also runs
 `COMMAND ARGS --help` and `COMMAND ARGS --version`. Prints one line per check
 ("PASS name", "FAIL name: why", or "SKIP name: why" when the server's
 capabilities make a check meaningless or its rule came in a later protocol

@@ -4,6 +4,7 @@
 
 #include "dfc/common/echo.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/protocol/authentication.hpp"
 #include "dfc/protocol/heartbeat.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -21,16 +22,18 @@ std::string format_seconds(std::chrono::milliseconds duration) {
 }
 }  // namespace
 
-Connection::Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits)
-    : socket_(context, zmq::socket_type::dealer), endpoint_(endpoint), label_(std::move(label)), limits_(limits) {
+Connection::Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits,
+                       std::optional<std::string> server_key)
+    : socket_(context, zmq::socket_type::dealer), endpoint_(endpoint), server_key_(std::move(server_key)), label_(std::move(label)), limits_(limits) {
   configure_socket(socket_, limits_);
+  authentication::secure_client_socket(socket_, server_key_);
   socket_.connect(endpoint);
 }
 
 void Connection::watch_heartbeat(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout) {
   if (const auto problem = endpoint_problem(endpoint))
     throw RemoteError("BAD_MESSAGE", label_ + " announced a heartbeat_endpoint that is no endpoint: " + *problem + " (SPEC.md §9.1)", "");
-  heartbeat_.emplace(context, heartbeat::connect_endpoint(endpoint, endpoint_), hang_timeout);
+  heartbeat_.emplace(context, heartbeat::connect_endpoint(endpoint, endpoint_), hang_timeout, server_key_);
 }
 
 std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline) {
@@ -84,8 +87,8 @@ std::optional<Message> Connection::send_frames_raw(const std::vector<std::string
   return await_reply(std::nullopt, deadline);
 }
 
-SolverClient::SolverClient(zmq::context_t& context, const std::string& endpoint, std::string label)
-    : connection_(context, endpoint, std::move(label)) {}
+SolverClient::SolverClient(zmq::context_t& context, const std::string& endpoint, std::string label, std::optional<std::string> server_key)
+    : connection_(context, endpoint, std::move(label), Limits{}, std::move(server_key)) {}
 
 bool SolverClient::Hello::has(std::string_view capability) const {
   for (const auto& c : capabilities)

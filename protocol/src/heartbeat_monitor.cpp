@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "dfc/protocol/authentication.hpp"
 #include "dfc/protocol/heartbeat.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -22,7 +23,8 @@ double seconds_between(std::chrono::steady_clock::time_point from, std::chrono::
 }
 }  // namespace
 
-HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout)
+HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout,
+                                   const std::optional<std::string>& server_key)
     : socket_(context, zmq::socket_type::dealer),
       endpoint_(endpoint),
       hang_timeout_(std::max(hang_timeout, std::chrono::milliseconds(1))),
@@ -31,6 +33,7 @@ HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& e
   // A ping never blocks the wait: to a server that reads none, pings pile up
   // to the high-water mark and the next ones are dropped, not waited on.
   socket_.set(zmq::sockopt::sndtimeo, 0);
+  authentication::secure_client_socket(socket_, server_key);
   socket_.connect(endpoint);
 }
 

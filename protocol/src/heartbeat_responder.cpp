@@ -69,9 +69,11 @@ double Liveness::busy_seconds() const noexcept {
   return since < 0 ? -1.0 : static_cast<double>(steady_ns() - since) * 1e-9;
 }
 
-HeartbeatResponder::HeartbeatResponder(zmq::context_t& context, const std::string& bind, const Liveness& liveness, std::string version) {
+HeartbeatResponder::HeartbeatResponder(zmq::context_t& context, const std::string& bind, const Liveness& liveness, std::string version,
+                                       const std::optional<authentication::CurveKeyPair>& keys) {
   zmq::socket_t socket(context, zmq::socket_type::router);
   configure_socket(socket, heartbeat::message_limits());
+  authentication::secure_server_socket(socket, keys);
   socket.bind(bind);
   endpoint_ = socket.get(zmq::sockopt::last_endpoint);
   // The socket moves to the thread, which alone uses it from now on (a

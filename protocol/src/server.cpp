@@ -16,6 +16,7 @@
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/heartbeat.hpp"
 #include "dfc/protocol/heartbeat_responder.hpp"
+#include "dfc/protocol/key_file.hpp"
 #include "dfc/protocol/server_session.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -43,6 +44,10 @@ void print_help(const ServerProgram& program) {
             << "(normally the coupler) until it receives 'shutdown'. Diagnostics go to stderr.\n"
             << "Beside it a second socket, the heartbeat, answers pings from a thread of its own,\n"
             << "also while the server works (announced in hello_ok; SPEC.md section 9.1).\n\n"
+            << "Authentication (SPEC.md section 2.1): with " << authentication::kKeyFileVariable << "=FILE in its environment (a key file\n"
+            << "of mode 0600: the coupler makes one per run; 'coupler keys FILE' makes one for a server started by hand)\n"
+            << "every socket answers only clients that hold FILE (ZeroMQ CURVE), and the server prints\n"
+            << "'" << authentication::kAnnouncement << "' before the DFC-LISTENING line. Without it any local process may connect.\n\n"
             << "Options:\n"
             << "  --bind ENDPOINT        where to listen (default tcp://127.0.0.1:* = loopback, any free port)\n"
             << "  --idle-timeout S       exit with status 3 after S seconds without any message (default 3600; 0 = never)\n"
@@ -115,35 +120,57 @@ void print_advance_statistics(std::string_view name, const AdvanceStatistics& st
   std::cerr << "\n";
 }
 
+/// The key pair of the key file named by DFC_KEY_FILE (SPEC.md §2.1), for a
+/// server that declares 1.7 or later; nullopt when the variable is unset or
+/// empty. A fixture playing an older server ignores it, as such a server would.
+std::optional<authentication::CurveKeyPair> keys_from_environment(const ServerProgram& program) {
+  if (program.declared_minor < authentication::kSinceMinor || !program.authentication) return std::nullopt;
+  const char* path = std::getenv(std::string(authentication::kKeyFileVariable).c_str());
+  if (path == nullptr || *path == '\0') return std::nullopt;
+  try {
+    return read_key_file(path);
+  } catch (const UserError& e) {
+    throw UserError(std::string(e.what()) + " (named by " + std::string(authentication::kKeyFileVariable) + ")");
+  }
+}
+
 /// The heartbeat next to the main socket at `endpoint` (SPEC.md §9.1), for a
-/// server that declares 1.6 or later and listens where one can sit beside it.
+/// server that declares 1.6 or later and listens where one can sit beside it;
+/// it requires the same key as the main socket (SPEC.md §2.1).
 std::unique_ptr<HeartbeatResponder> start_heartbeat(zmq::context_t& context, const std::string& endpoint, const ServerProgram& program,
-                                                    const Liveness& liveness, const std::string& version) {
+                                                    const Liveness& liveness, const std::string& version,
+                                                    const std::optional<authentication::CurveKeyPair>& keys) {
   if (program.declared_minor < heartbeat::kSinceMinor || !program.heartbeat) return nullptr;
   const auto bind = heartbeat::bind_endpoint(endpoint);
   if (!bind) {
     std::cerr << program.name << ": no heartbeat beside " << endpoint << " (only tcp, ipc and inproc endpoints have one)\n";
     return nullptr;
   }
-  return std::make_unique<HeartbeatResponder>(context, *bind, liveness, version);
+  return std::make_unique<HeartbeatResponder>(context, *bind, liveness, version, keys);
 }
 
 int serve(const ServerProgram& program, const ServerOptions& options) {
   const auto backend = program.make_backend();
   ServerSession session(*backend, options.limits);
   session.declare_minor(program.declared_minor);
+  const auto keys = keys_from_environment(program);
   zmq::context_t context(1);
   zmq::socket_t socket(context, zmq::socket_type::router);
   configure_socket(socket, options.limits);
+  authentication::secure_server_socket(socket, keys);
   socket.bind(options.bind);
   const std::string endpoint = socket.get(zmq::sockopt::last_endpoint);
   // Declared after the context and the socket, so destroyed before them on
   // every path out of here (return or exception): its thread stops and joins
   // first, and the context's termination never waits for its socket.
   Liveness liveness;
-  const auto heartbeat = start_heartbeat(context, endpoint, program, liveness, session.version());
+  const auto heartbeat = start_heartbeat(context, endpoint, program, liveness, session.version(), keys);
   if (heartbeat) session.set_heartbeat_endpoint(heartbeat->endpoint());
-  std::cout << "DFC-LISTENING " << endpoint << std::endl;
+  if (keys) std::cout << authentication::kAnnouncement << "\n";
+  else if (program.declared_minor >= authentication::kSinceMinor && program.authentication)
+    std::cerr << program.name << ": no " << authentication::kKeyFileVariable << " in the environment: any process on this host that reaches "
+              << endpoint << " can talk to this server (SPEC.md section 2.1)\n";
+  std::cout << kListeningMarker << endpoint << std::endl;
 
   const auto poll_slice = std::chrono::milliseconds(500);
   auto last_message = std::chrono::steady_clock::now();

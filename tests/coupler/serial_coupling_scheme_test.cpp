@@ -132,9 +132,9 @@ struct CoupledPair {
         continuum_backend("continuum", fault),
         dem_server(context, dem_backend),
         continuum_server(context, continuum_backend),
-        dem(context, {"dem", "scripted_dem", {}, {}, dem_server.endpoint(), nlohmann::json::object()}, std::filesystem::temp_directory_path(),
+        dem(context, {"dem", "scripted_dem", {}, {}, dem_server.endpoint(), nlohmann::json::object(), {}}, std::filesystem::temp_directory_path(),
             5s, 10s, stop),
-        continuum(context, {"continuum", "scripted_continuum", {}, {}, continuum_server.endpoint(), nlohmann::json::object()},
+        continuum(context, {"continuum", "scripted_continuum", {}, {}, continuum_server.endpoint(), nlohmann::json::object(), {}},
                   std::filesystem::temp_directory_path(), 5s, 10s, stop) {
     for (Participant* p : {&dem, &continuum}) {
       p->hello(5s);

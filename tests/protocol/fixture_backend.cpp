@@ -32,6 +32,7 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "unsent-progress-monitor") return Breakage::unsent_progress_monitor;
   if (name == "malformed-progress-monitors") return Breakage::malformed_progress_monitors;
   if (name == "no-heartbeat") return Breakage::no_heartbeat;
+  if (name == "no-authentication") return Breakage::no_authentication;
   if (name == "accept-surplus-input") return Breakage::accepts_surplus_input;
   return std::nullopt;
 }
@@ -80,6 +81,7 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::unsent_progress_monitor:
     case Breakage::malformed_progress_monitors:
     case Breakage::no_heartbeat:
+    case Breakage::no_authentication:
     case Breakage::accepts_surplus_input: break;
   }
   if (request.dt > kDtMax) throw UnstableStepError("dt exceeds the fixture's stability limit", kDtMax);  // before anything changes

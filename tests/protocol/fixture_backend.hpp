@@ -24,10 +24,11 @@ enum class Breakage {
   unsent_progress_monitor,      ///< configure lists a progress monitor the server never sends
   malformed_progress_monitors,  ///< configure's info.progress_monitors is not an array
   no_heartbeat,                 ///< declares the current minor but runs no heartbeat (SPEC.md §9.1)
+  no_authentication,            ///< declares the current minor but ignores DFC_KEY_FILE (SPEC.md §2.1)
   accepts_surplus_input         ///< advances despite an input array it does not take (SPEC.md §6.1, 1.1)
 };
 
-/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors", "no-heartbeat", "accept-surplus-input"; nullopt for anything else.
+/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors", "no-heartbeat", "no-authentication", "accept-surplus-input"; nullopt for anything else.
 [[nodiscard]] std::optional<Breakage> breakage_from_name(std::string_view name) noexcept;
 
 class FixtureBackend final : public SolverBackend {

@@ -39,7 +39,7 @@ Message ping(Connection& connection) {
 TEST(HeartbeatResponder, AnswersWhileTheMainThreadIsBusyAndCountsItsRequests) {
   zmq::context_t context(1);
   Liveness liveness;
-  HeartbeatResponder responder(context, "inproc://busy_server.heartbeat", liveness, "1.6");
+  HeartbeatResponder responder(context, "inproc://busy_server.heartbeat", liveness, "1.6", std::nullopt);
   Connection connection(context, responder.endpoint(), "heartbeat");
 
   liveness.begin_request();  // the main thread is inside a long request
@@ -67,7 +67,7 @@ TEST(HeartbeatResponder, AnswersWhileTheMainThreadIsBusyAndCountsItsRequests) {
 TEST(HeartbeatResponder, StopsPromptlyWhenDestroyed) {
   zmq::context_t context(1);
   Liveness liveness;
-  auto responder = std::make_unique<HeartbeatResponder>(context, "tcp://127.0.0.1:*", liveness, "1.6");
+  auto responder = std::make_unique<HeartbeatResponder>(context, "tcp://127.0.0.1:*", liveness, "1.6", std::nullopt);
   const auto start = std::chrono::steady_clock::now();
   responder.reset();
   EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
@@ -87,9 +87,9 @@ bool stays_alive(HeartbeatMonitor& monitor, std::chrono::milliseconds how_long) 
 TEST(HeartbeatMonitor, ABusyServerThatAnswersIsAlive) {
   zmq::context_t context(1);
   Liveness liveness;
-  HeartbeatResponder responder(context, "inproc://answering.heartbeat", liveness, "1.6");
+  HeartbeatResponder responder(context, "inproc://answering.heartbeat", liveness, "1.6", std::nullopt);
   liveness.begin_request();
-  HeartbeatMonitor monitor(context, responder.endpoint(), 200ms);
+  HeartbeatMonitor monitor(context, responder.endpoint(), 200ms, std::nullopt);
   EXPECT_TRUE(stays_alive(monitor, 800ms));  // four hang timeouts, busy all along
 }
 
@@ -97,7 +97,7 @@ TEST(HeartbeatMonitor, AServerThatAnswersNoPingIsHungAfterTheTimeout) {
   zmq::context_t context(1);
   zmq::socket_t silent(context, zmq::socket_type::router);  // receives the pings, answers none
   silent.bind("inproc://silent.heartbeat");
-  HeartbeatMonitor monitor(context, "inproc://silent.heartbeat", 200ms);
+  HeartbeatMonitor monitor(context, "inproc://silent.heartbeat", 200ms, std::nullopt);
   const auto start = std::chrono::steady_clock::now();
   EXPECT_FALSE(stays_alive(monitor, 2s));
   const auto waited = std::chrono::steady_clock::now() - start;

@@ -39,6 +39,10 @@ const SectionDeclaration& scenario_participant() {
                                           "elastic_reference_server) or a path relative to the scenario file")
                          .optional("endpoint"),
                      P::string("endpoint", "ZeroMQ endpoint of a running server, e.g. tcp://127.0.0.1:5555").optional("program"),
+                     P::string("key_file", "with endpoint: the key file the running server was started with (its DFC_KEY_FILE; "
+                                           "'coupler keys FILE' writes one), relative to the scenario file; the coupler makes the keys "
+                                           "of the servers it starts itself (protocol/SPEC.md §2.1)")
+                         .optional("connect without authentication"),
                      P::strings("args", "extra command-line arguments of the program").optional("none"),
                      P::any_object("config", "the server's section (dem_server --help, fdm_server --help); gravity comes from the top level")},
   };

@@ -27,9 +27,13 @@ class Subprocess {
  public:
   /// Starts argv[0] (searched in PATH when it has no '/') with argv[1..],
   /// stderr to `stderr_log` (created or truncated) or, when empty, to an
-  /// anonymous in-memory file. Throws dfc::UserError naming the command if it
-  /// cannot be executed.
-  explicit Subprocess(const std::vector<std::string>& argv, const std::filesystem::path& stderr_log = {});
+  /// anonymous in-memory file. `environment` entries ("NAME=VALUE") are added
+  /// to (or replace those of) this process's environment, which the child
+  /// inherits: a way to hand it what must not be on its command line, which
+  /// every user of the host can read. Throws dfc::UserError naming the command
+  /// if it cannot be executed.
+  explicit Subprocess(const std::vector<std::string>& argv, const std::filesystem::path& stderr_log = {},
+                      const std::vector<std::string>& environment = {});
   ~Subprocess();
   Subprocess(const Subprocess&) = delete;
   Subprocess& operator=(const Subprocess&) = delete;

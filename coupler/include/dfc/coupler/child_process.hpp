@@ -20,17 +20,24 @@ namespace dfc::coupler {
 
 class ChildProcess {
  public:
-  /// Starts `executable args...` with stdout to a pipe and stderr to `stderr_log`.
+  /// Starts `executable args...` with stdout to a pipe and stderr to
+  /// `stderr_log`, with `environment` ("NAME=VALUE") added to its environment.
   ChildProcess(const std::filesystem::path& executable, const std::vector<std::string>& args, const std::filesystem::path& stderr_log,
-               const std::filesystem::path& stdout_log);
+               const std::filesystem::path& stdout_log, const std::vector<std::string>& environment);
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
-  /// Waits for the line "DFC-LISTENING <endpoint>" on stdout; returns the
-  /// endpoint. Throws dfc::UserError if the process exits or prints nothing in time.
-  /// `while_waiting` runs every 100 ms and may throw to give up (e.g. on Ctrl-C).
-  std::string wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label, const std::function<void()>& while_waiting);
+  /// What a server said on stdout before it served (SPEC.md §2, §2.1).
+  struct Listening {
+    std::string endpoint;        ///< of the line "DFC-LISTENING <endpoint>"
+    bool authenticated = false;  ///< the line "DFC-AUTHENTICATION curve" came before it
+  };
+  /// Waits for the line "DFC-LISTENING <endpoint>" on stdout, noting the
+  /// authentication line before it. Throws dfc::UserError if the process
+  /// exits or prints nothing in time. `while_waiting` runs every 100 ms and
+  /// may throw to give up (e.g. on Ctrl-C).
+  Listening wait_for_endpoint(std::chrono::milliseconds timeout, const std::string& label, const std::function<void()>& while_waiting);
 
   /// nullopt while running; otherwise a description ("exited with status 3",
   /// "was killed by signal 9 (Killed)"). Reaps the child.

@@ -15,6 +15,7 @@
 #include "dfc/coupler/child_process.hpp"
 #include "dfc/coupler/scenario.hpp"
 #include "dfc/protocol/client.hpp"
+#include "dfc/protocol/run_key_file.hpp"
 
 namespace dfc::coupler {
 
@@ -58,14 +59,20 @@ class StopRequest {
 
 class Participant {
  public:
-  /// Starts the server (or connects to spec.endpoint). Server logs go to `log_dir`.
+  /// Starts the server, naming `run_keys` in its environment (DFC_KEY_FILE,
+  /// SPEC.md §2.1; without them hello refuses a started server of 1.7 or
+  /// later), or connects to spec.endpoint with spec.key_file's key when the
+  /// scenario names one. Server logs go to `log_dir`.
   /// Every wait for it gives up through `stop` (which must outlive this), and,
   /// once it announced a heartbeat (SPEC.md §9.1), when it has answered
   /// neither the request nor a ping for `hang_timeout` (run.hang_timeout_s).
   Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-              std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop);
+              std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop,
+              const protocol::RunKeyFile* run_keys = nullptr);
 
-  /// hello, then watches the heartbeat the server announced (none from a server before 1.6).
+  /// hello, then watches the heartbeat the server announced (none from a server
+  /// before 1.6). Refuses a server it started that declares 1.7 or later but
+  /// did not take the run's key: it would answer any local process.
   void hello(std::chrono::milliseconds deadline);
   /// Sends the config section; a BAD_CONFIG reply becomes a dfc::ConfigError
   /// whose key path starts at the scenario root (participants.<slot>.config.<key>).
@@ -97,6 +104,8 @@ class Participant {
   zmq::context_t* context_;
   std::chrono::milliseconds hang_timeout_;
   bool hung_ = false;  ///< it stopped answering: stop() kills it at once
+  bool authenticated_ = false;  ///< connected with the server's key (SPEC.md §2.1)
+  bool greeted_ = false;        ///< hello was answered
   std::unique_ptr<ChildProcess> process_;
   std::unique_ptr<protocol::SolverClient> client_;
   protocol::SolverClient::Hello hello_;

@@ -33,6 +33,7 @@ struct ParticipantSpec {
   std::vector<std::string> args;          ///< extra command-line arguments
   std::string endpoint;                   ///< connect here instead of starting a process
   nlohmann::json config;                  ///< the section sent in `configure` (gravity injected)
+  std::filesystem::path key_file;         ///< with endpoint: that server's key file (SPEC.md §2.1); empty: none
   [[nodiscard]] std::string key_path() const { return "participants." + slot; }
 };
 

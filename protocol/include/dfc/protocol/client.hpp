@@ -52,7 +52,10 @@ class RemoteError : public std::runtime_error {
 class Connection {
  public:
   /// Connects a DEALER socket to `endpoint`. `label` names the server in errors.
-  Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits = {});
+  /// With `server_key` (the public key of the server's key file) the socket
+  /// is a CURVE client (SPEC.md §2.1), and so is the heartbeat's.
+  Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits = {},
+             std::optional<std::string> server_key = std::nullopt);
 
   /// Called about every 100 ms while a reply is awaited; may throw to abort
   /// the wait (the coupler checks there that the server process is alive).
@@ -83,6 +86,7 @@ class Connection {
 
   zmq::socket_t socket_;
   std::string endpoint_;
+  std::optional<std::string> server_key_;
   std::optional<HeartbeatMonitor> heartbeat_;
   std::string label_;
   Limits limits_;
@@ -97,7 +101,8 @@ class Connection {
 /// Typed calls of the lifecycle (SPEC.md §4), on top of Connection.
 class SolverClient {
  public:
-  SolverClient(zmq::context_t& context, const std::string& endpoint, std::string label);
+  /// `server_key`: as for Connection.
+  SolverClient(zmq::context_t& context, const std::string& endpoint, std::string label, std::optional<std::string> server_key = std::nullopt);
 
   struct Hello {
     std::string solver_name;

@@ -17,9 +17,11 @@ namespace dfc::protocol {
 
 class HeartbeatMonitor {
  public:
-  /// Connects a DEALER socket to the heartbeat at `endpoint`. A server is hung
-  /// once a ping has gone unanswered for `hang_timeout` (> 0).
-  HeartbeatMonitor(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout);
+  /// Connects a DEALER socket to the heartbeat at `endpoint`, with the
+  /// server's key when it has one (SPEC.md §2.1). A server is hung once a
+  /// ping has gone unanswered for `hang_timeout` (> 0).
+  HeartbeatMonitor(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout,
+                   const std::optional<std::string>& server_key);
 
   /// A wait for a reply begins: the silence is counted from now (the last
   /// reply, or the client's own work, came just before).

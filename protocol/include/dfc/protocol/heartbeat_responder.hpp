@@ -11,6 +11,8 @@
 
 #include <zmq.hpp>
 
+#include "dfc/protocol/authentication.hpp"
+
 namespace dfc::protocol {
 
 /// What the main thread has done, for the heartbeat's pongs: written by the
@@ -37,8 +39,10 @@ class HeartbeatResponder {
  public:
   /// Binds a ROUTER socket at `bind` in `context` (before returning, so the
   /// endpoint can be announced) and answers pings from a thread of its own,
-  /// speaking `version`, until destroyed. Destroy it before `context`.
-  HeartbeatResponder(zmq::context_t& context, const std::string& bind, const Liveness& liveness, std::string version);
+  /// speaking `version`, until destroyed. Destroy it before `context`. With
+  /// `keys` it answers only clients that hold them, like the main socket (SPEC.md §2.1).
+  HeartbeatResponder(zmq::context_t& context, const std::string& bind, const Liveness& liveness, std::string version,
+                     const std::optional<authentication::CurveKeyPair>& keys);
   HeartbeatResponder(const HeartbeatResponder&) = delete;
   HeartbeatResponder& operator=(const HeartbeatResponder&) = delete;
   /// Stops the thread (it looks at its stop token every 100 ms) and joins it; its socket closes with it.

@@ -24,10 +24,14 @@ struct ServerProgram {
   /// Whether a server declaring 1.6 or later runs its heartbeat; false only in
   /// a test fixture that breaks that rule on purpose.
   bool heartbeat = true;
+  /// Whether a server declaring 1.7 or later uses the key file DFC_KEY_FILE
+  /// names (SPEC.md §2.1); false only in a test fixture that breaks that rule on purpose.
+  bool authentication = true;
 };
 
 /// main() of every server: parses --bind/--help/--version/--check-config, binds a ROUTER
 /// socket (and, beside it, the heartbeat's, served by a thread of its own),
+/// both CURVE servers with the key of the file DFC_KEY_FILE names, if it names one,
 /// prints "DFC-LISTENING <endpoint>" on stdout and serves one session until
 /// shutdown. Returns the process exit status.
 int run_server_main(int argc, char** argv, const ServerProgram& program);

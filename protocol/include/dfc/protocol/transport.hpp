@@ -15,6 +15,10 @@
 
 namespace dfc::protocol {
 
+/// The start of the line a server prints on stdout once it listens (SPEC.md §2):
+/// "DFC-LISTENING <endpoint>".
+inline constexpr std::string_view kListeningMarker = "DFC-LISTENING ";
+
 /// Linger 0 (abort paths never block, ZeroMQ ZMQ_LINGER, zmq_setsockopt(3)) and a
 /// transport-level cap on frame size well above the protocol limits, so that an
 /// over-limit frame still reaches the codec and gets a TOO_LARGE reply while a
