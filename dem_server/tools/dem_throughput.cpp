@@ -260,7 +260,14 @@ std::uint64_t state_digest(const Simulation& sim) {
   add(p.angular_velocity);
   add(p.force);
   add(p.moment);
-  add(sim.pair_contacts().history);
+  // Whole rows (hot then cold columns, contact_model.hpp SplitsHistory): the
+  // values, whatever arrays hold them.
+  const PairContacts& pairs = sim.pair_contacts();
+  std::vector<double> row(pairs.whole_stride());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    pairs.copy_whole_row(k, row.data());
+    add(row);
+  }
   add(sim.contact_outputs().force);
   return hash;
 }

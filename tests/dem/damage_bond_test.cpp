@@ -2,7 +2,10 @@
 // (docs/theory/dem_contact_laws.md §3): after every step the elastic state lies
 // inside the envelope (f <= 0), D never decreases, and D equals the
 // corrected Eq. 2 of its accumulated plastic measures.
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -47,9 +50,10 @@ TEST(DamageBond, CombinedCyclicPathStaysInsideTheEnvelopeWithMonotoneDamage) {
     EXPECT_NEAR(D, 1.0 - std::exp(-(h[DamageBondLaw::accumulated_opening] / 2e-5 + h[DamageBondLaw::accumulated_slip] / 2e-5 +
                                     h[DamageBondLaw::accumulated_bend] / 6e-3)), 1e-14);
     // f <= 0 at the stored elastic displacements (normalised as in damage_bond_law.hpp).
-    const double en = h[DamageBondLaw::opening] - h[DamageBondLaw::plastic_opening];
-    const Vec3 es = Vec3{h[3], h[4], h[5]} - Vec3{h[11], h[12], h[13]};
-    const Vec3 eb = Vec3{h[7], h[8], h[9]} - Vec3{h[14], h[15], h[16]};
+    const double* plastic = h.data() + DamageBondLaw::hot_history_size;  // a whole row: the cold columns last
+    const double en = h[DamageBondLaw::opening] - plastic[DamageBondLaw::plastic_opening];
+    const Vec3 es = load_vec3(h.data() + DamageBondLaw::slip) - load_vec3(plastic + DamageBondLaw::plastic_slip);
+    const Vec3 eb = load_vec3(h.data() + DamageBondLaw::bend) - load_vec3(plastic + DamageBondLaw::plastic_bend);
     const EnvelopePoint x{kn * en / (en >= 0 ? 1e6 : 50e6), ks * norm(es) / 2e6, kn * norm(eb) * r / 1e6};
     // The return stops at f in [-1e-9, 0]; re-forming the normalised point
     // from stored displacements adds rounding of ~1e-15.
@@ -112,6 +116,49 @@ TEST(DamageBond, SurelyElasticTrialsAreInsideTheEnvelope) {
   // Both paths were sampled.
   EXPECT_GT(fast, 10000);
   EXPECT_GT(slow, 10000);
+}
+
+// The split row (contact_model.hpp SplitsHistory): a bond that has not
+// yielded neither reads nor writes its plastic parts, so the pair loop need
+// not bring them from memory. The cold row holds NaN here: read, it would
+// make the force NaN; written, its bits would change. Once the bond yields,
+// the plastic parts are written and the accumulated measures that announce
+// them are positive.
+TEST(DamageBond, ABondThatHasNotYieldedLeavesItsPlasticRowUntouched) {
+  const DamageBondLaw law = seed001_law();
+  std::vector<double> hot(DamageBondLaw::hot_history_size, 0.0);
+  std::vector<double> cold(DamageBondLaw::cold_history_size, std::numeric_limits<double>::quiet_NaN());
+  const std::vector<double> untouched = cold;
+  set_bond_state(hot.data(), BondState::intact);
+  ContactKinematics k;
+  k.normal = {0.0, 0.0, 1.0};
+  k.overlap = -1e-9;
+  k.radius_first = k.radius_second = 1e-3;
+  k.effective_mass = 1e-6;
+  k.dt = 1e-6;
+  double c[DamageBondLaw::constants_size];
+  law.pair_constants(k, c);
+  const auto step = [&](const Vec3& velocity) {
+    k.relative_velocity = velocity;
+    rotate_in_plane_history<DamageBondLaw>(hot.data(), k);
+    return law.evaluate_in_plane(k, c, hot.data(), cold.data());
+  };
+  // 100 steps of 1e-9 m opening and shear: 1e-7 m, a tenth of the opening at
+  // the tensile strength (sigma_t / k_n = 1e6 / 8.5e11 = 1.2e-6 m).
+  for (int s = 0; s < 100; ++s) {
+    const ContactForce f = step({1e-3, 0.0, 1e-3});
+    ASSERT_TRUE(std::isfinite(f.on_first.x) && std::isfinite(f.on_first.z)) << "step " << s;
+  }
+  EXPECT_EQ(bond_state(hot.data()), BondState::intact);
+  EXPECT_GT(hot[DamageBondLaw::opening], 0.9e-7);
+  for (std::size_t i = 0; i < cold.size(); ++i) EXPECT_EQ(std::bit_cast<std::uint64_t>(cold[i]), std::bit_cast<std::uint64_t>(untouched[i]));
+  // Pulled apart at 0.1 m/s (1e-7 m a step) from zeros: it yields within 20 steps.
+  std::fill(cold.begin(), cold.end(), 0.0);
+  for (int s = 0; s < 20 && !DamageBondLaw::plastic_in_use(hot.data()); ++s) (void)step({0.0, 0.0, 0.1});
+  ASSERT_TRUE(DamageBondLaw::plastic_in_use(hot.data()));
+  EXPECT_EQ(bond_state(hot.data()), BondState::damaged);
+  EXPECT_GT(cold[DamageBondLaw::plastic_opening], 0.0);
+  EXPECT_GT(hot[DamageBondLaw::accumulated_opening], 0.0);
 }
 
 }  // namespace

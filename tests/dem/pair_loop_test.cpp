@@ -64,15 +64,17 @@ template <class Law, class Prepare>
 PairContacts chain_pairs(const Law& law, const ParticleStore& p, std::mt19937_64& rng, const Prepare& prepare) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   PairContacts pairs;
-  pairs.stride = Law::history_size;
+  pairs.set_strides(Law::history_size, cold_history_size_of<Law>());
   for (std::uint32_t s = 0; s + 1 < p.size(); ++s) {
     pairs.first.push_back(s);
     pairs.second.push_back(s + 1);
   }
-  pairs.history.resize(pairs.size() * pairs.stride);
+  pairs.resize_history();
+  std::vector<double> whole(Law::history_size);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    for (std::size_t c = 0; c < pairs.stride; ++c) pairs.row(k)[c] = 1e-3 * unit(rng);
-    prepare(k, pairs.row(k));
+    for (double& v : whole) v = 1e-3 * unit(rng);
+    prepare(k, whole.data());
+    pairs.set_whole_row(k, whole.data());
   }
   compute_pair_constants(law, p, pairs);
   return pairs;
@@ -126,7 +128,9 @@ PairContacts expect_loop_equals_law_alone(const Law& law, const Prepare& prepare
   std::mt19937_64 rng(20261123);
   ParticleStore p = jittered_chain(rng, odd_offset);
   PairContacts pairs = chain_pairs(law, p, rng, prepare);
-  UninitialisedDoubles expected_history = pairs.history;
+  // Whole rows (hot then cold columns), as evaluate_alone's law.evaluate takes them.
+  std::vector<double> expected_history(pairs.size() * pairs.whole_stride());
+  for (std::size_t k = 0; k < pairs.size(); ++k) pairs.copy_whole_row(k, expected_history.data() + k * pairs.whole_stride());
   const Incidence incidence = build_incidence(p.size(), pairs, {}, {}, 1);
   ContactOutputs out;
   out.resize(pairs.size(), Law::has_couple, Space::periodic ? pairs.size() : 0);
@@ -138,7 +142,7 @@ PairContacts expect_loop_equals_law_alone(const Law& law, const Prepare& prepare
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const std::uint32_t i = pairs.first[k];
     const std::uint32_t j = pairs.second[k];
-    double* row = expected_history.data() + k * pairs.stride;
+    double* row = expected_history.data() + k * pairs.whole_stride();
     const AloneResult r = evaluate_alone(law, p, i, j, row, space);
     const ContactForce& f = r.force;
     if (f.on_first != Vec3{}) ++acting;
@@ -153,7 +157,9 @@ PairContacts expect_loop_equals_law_alone(const Law& law, const Prepare& prepare
     if constexpr (Space::periodic) {
       EXPECT_EQ(out.shift[k], r.shift) << "pair " << k;
     }
-    for (std::size_t c = 0; c < pairs.stride; ++c) EXPECT_EQ(pairs.row(k)[c], row[c]) << "pair " << k << " column " << c;
+    std::vector<double> loop_row(pairs.whole_stride());
+    pairs.copy_whole_row(k, loop_row.data());
+    for (std::size_t c = 0; c < loop_row.size(); ++c) EXPECT_EQ(loop_row[c], row[c]) << "pair " << k << " column " << c;
     // The sums in contact order, as the loop adds them with one range (zero
     // terms of idle pairs change no bit of a non-zero sum).
     add_contact_load(expected_force[i], expected_moment[i], f.on_first, r.point - p.position[i]);
@@ -216,14 +222,15 @@ TEST(PairLoop, ParallelBondContactsAreWhatTheLawGivesEachContactAlone) {
 /// strengths of weak_damage_bonds.
 void damage_bond_rows(std::size_t k, double* row) {
   using L = DamageBondLaw;
+  double* plastic = row + L::hot_history_size;  // a whole row: the cold columns (plastic parts) last
   for (std::size_t c = L::opening; c < L::twist; ++c) row[c] *= 1e-6;
-  for (std::size_t c = L::twist; c < L::plastic_opening; ++c) row[c] *= 1e-3;
-  for (std::size_t c = L::plastic_opening; c < L::plastic_bend; ++c) row[c] *= 1e-6;
-  for (std::size_t c = L::plastic_bend; c < L::accumulated_opening; ++c) row[c] *= 1e-3;
+  for (std::size_t c = L::twist; c < L::accumulated_opening; ++c) row[c] *= 1e-3;
+  for (std::size_t c = L::plastic_opening; c < L::plastic_bend; ++c) plastic[c] *= 1e-6;
+  for (std::size_t c = L::plastic_bend; c < L::cold_history_size; ++c) plastic[c] *= 1e-3;
   for (std::size_t c = L::accumulated_opening; c < L::linear_shear; ++c) row[c] = std::abs(row[c]) * 1e-6;
   switch (k % 4) {
     case 0:
-      for (std::size_t c = L::plastic_opening; c < L::history_size; ++c) row[c] = 0.0;
+      for (std::size_t c = L::accumulated_opening; c < L::history_size; ++c) row[c] = 0.0;
       row[L::damage] = 0.0;
       set_bond_state(row, BondState::intact);
       break;
@@ -233,6 +240,7 @@ void damage_bond_rows(std::size_t k, double* row) {
       break;
     case 2:
       for (std::size_t c = 1; c < L::linear_shear; ++c) row[c] = 0.0;
+      for (std::size_t c = 0; c < L::cold_history_size; ++c) plastic[c] = 0.0;
       row[L::damage] = 1.0;
       set_bond_state(row, BondState::broken_shear);
       break;

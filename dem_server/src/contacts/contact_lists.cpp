@@ -202,7 +202,7 @@ void write_row(const double* from, std::size_t stride, double* row) noexcept {
 
 /// The direct copy: block by block, each old unit given back after the block
 /// in which its last reader was written (`done_after`, 0: no reader).
-void copy_releasing_as_read(const PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, const RowBlocks& rows,
+void copy_releasing_as_read(const double* before, std::size_t stride, const std::vector<std::uint32_t>& match, double* after, const RowBlocks& rows,
                             const WholeUnits& units, const std::vector<std::size_t>& done_after) {
   // The units in order of release: those given back after block b are unit_order[release[b] .. release[b + 1]).
   std::vector<std::size_t> release(rows.blocks + 2, 0), unit_order(units.count());
@@ -213,7 +213,6 @@ void copy_releasing_as_read(const PairContacts& before, const std::vector<std::u
   const auto release_after = [&](std::size_t b) {
     for (std::size_t e = release[b]; e < release[b + 1]; ++e) units.release(unit_order[e], unit_order[e] + 1);
   };
-  const std::size_t stride = pairs.stride;
   release_after(0);
 #pragma omp parallel num_threads(int(rows.parts))
   {
@@ -221,7 +220,7 @@ void copy_releasing_as_read(const PairContacts& before, const std::vector<std::u
     for (std::size_t b = 0; b < rows.blocks; ++b) {
       const auto [first, last] = rows.block(t, b);
       for (std::size_t k = first; k < last; ++k)
-        write_row(match[k] == no_previous_pair ? nullptr : before.history.data() + std::size_t(match[k]) * stride, stride, pairs.row(k));
+        write_row(match[k] == no_previous_pair ? nullptr : before + std::size_t(match[k]) * stride, stride, after + k * stride);
 #pragma omp barrier
 #pragma omp single
       release_after(b + 1);
@@ -236,9 +235,8 @@ void copy_releasing_as_read(const PairContacts& before, const std::vector<std::u
 /// back once passed; (2) group by group into the new rows, each staged group
 /// given back once written. At no time do the old and new rows both exist
 /// whole; the price is a second copy.
-void copy_through_staging(PairContacts& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, const RowBlocks& rows,
-                          int threads) {
-  const std::size_t stride = pairs.stride, old_rows = before.size();
+void copy_through_staging(UninitialisedDoubles& before, std::size_t stride, std::size_t old_rows, const std::vector<std::uint32_t>& match, double* after,
+                          const RowBlocks& rows, int threads) {
   const std::size_t groups = rows.parts * rows.blocks;
   const auto group_of = [&](std::size_t k) {  // part-major: the groups of part t are t * blocks ..
     const std::size_t t = std::min(rows.parts - 1, k * rows.parts / std::max<std::size_t>(rows.rows, 1));
@@ -265,9 +263,9 @@ void copy_through_staging(PairContacts& before, const std::vector<std::uint32_t>
   // would make each group's whole 2 MiB resident at its first row.
   UninitialisedDoubles staged(group_start[groups] * stride);
   std::vector<std::uint32_t> staged_reader(group_start[groups]);
-  const WholeUnits old_units(before.history.data(), before.history.size() * sizeof(double));
+  const WholeUnits old_units(before.data(), before.size() * sizeof(double));
   const auto unit_of = [&](std::size_t m) {  // the whole unit that holds row m's start (0 before the first)
-    const std::uintptr_t u = reinterpret_cast<std::uintptr_t>(before.history.data() + m * stride) / huge_page_bytes;
+    const std::uintptr_t u = reinterpret_cast<std::uintptr_t>(before.data() + m * stride) / huge_page_bytes;
     return u > old_units.first ? std::size_t(u - old_units.first) : std::size_t(0);
   };
 #pragma omp parallel num_threads(int(old_parts.parts))
@@ -281,7 +279,7 @@ void copy_through_staging(PairContacts& before, const std::vector<std::uint32_t>
     for (std::size_t m = first; m < last; ++m) {
       if (reader[m] != no_previous_pair) {
         const std::size_t e = fill[group_of(reader[m])]++;
-        std::copy_n(before.history.data() + m * stride, stride, staged.data() + e * stride);
+        std::copy_n(before.data() + m * stride, stride, staged.data() + e * stride);
         staged_reader[e] = reader[m];
       }
       if ((m & 1023) == 1023 && old_units.count() > 0) {
@@ -291,7 +289,7 @@ void copy_through_staging(PairContacts& before, const std::vector<std::uint32_t>
       }
     }
   }
-  before = PairContacts{};
+  before = UninitialisedDoubles{};
   // (2) Group by group (a part's groups on its thread, as the rows' first
   // touch wants), each thread giving back the staged units it has passed
   // (a part's groups are contiguous in the staging area).
@@ -306,10 +304,10 @@ void copy_through_staging(PairContacts& before, const std::vector<std::uint32_t>
     std::size_t released = t == 0 ? 0 : unit_at(group_start[t * rows.blocks]) + 1;  // the unit shared with the part before stays
     for (std::size_t b = 0; b < rows.blocks; ++b) {
       const std::size_t g = t * rows.blocks + b;
-      for (std::size_t e = group_start[g]; e < group_start[g + 1]; ++e) write_row(staged.data() + e * stride, stride, pairs.row(staged_reader[e]));
+      for (std::size_t e = group_start[g]; e < group_start[g + 1]; ++e) write_row(staged.data() + e * stride, stride, after + staged_reader[e] * stride);
       const auto [first, last] = rows.block(t, b);
       for (std::size_t k = first; k < last; ++k)
-        if (match[k] == no_previous_pair) write_row(nullptr, stride, pairs.row(k));
+        if (match[k] == no_previous_pair) write_row(nullptr, stride, after + k * stride);
       const std::size_t passed = unit_at(group_start[g + 1]);
       staged_units.release(released, passed);
       released = std::max(released, passed);
@@ -317,20 +315,23 @@ void copy_through_staging(PairContacts& before, const std::vector<std::uint32_t>
   }
 }
 
-}  // namespace
-
-void move_matched_rows(PairContacts&& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads) {
-  const std::size_t stride = pairs.stride, row_bytes = stride * sizeof(double);
+/// move_matched_rows for one of the two history arrays: `before` holds
+/// `old_rows` rows of `stride`, `after` match.size() rows (sized, not written);
+/// `before` is emptied.
+void move_rows(UninitialisedDoubles& before, std::size_t stride, std::size_t old_rows, const std::vector<std::uint32_t>& match, UninitialisedDoubles& after,
+               int threads) {
+  if (stride == 0) return;
+  const std::size_t row_bytes = stride * sizeof(double);
   const RowBlocks rows(match.size(), row_bytes, threads);
   // Per whole unit of the old history: after which block of the direct copy
   // no new row reads it any more (0: none reads it).
-  const WholeUnits units(before.history.data(), before.history.size() * sizeof(double));
+  const WholeUnits units(before.data(), before.size() * sizeof(double));
   std::vector<std::size_t> done_after(units.count(), 0);
   for (std::size_t t = 0; t < rows.parts && units.count() > 0 && row_bytes > 0; ++t)
     for (std::size_t k = rows.start(t); k < rows.start(t + 1); ++k) {
       if (match[k] == no_previous_pair) continue;
       const std::size_t block = (k - rows.start(t)) / rows.block_rows + 1;
-      const auto row = reinterpret_cast<std::uintptr_t>(before.history.data() + std::size_t(match[k]) * stride);
+      const auto row = reinterpret_cast<std::uintptr_t>(before.data() + std::size_t(match[k]) * stride);
       for (std::uintptr_t u = std::max(row / huge_page_bytes, units.first); u <= (row + row_bytes - 1) / huge_page_bytes && u < units.end; ++u)
         done_after[u - units.first] = std::max(done_after[u - units.first], block);
     }
@@ -345,17 +346,36 @@ void move_matched_rows(PairContacts&& before, const std::vector<std::uint32_t>& 
     const double written = double(std::min(b * rows.block_rows, rows.rows / rows.parts + 1) * rows.parts * row_bytes);
     worst = std::max(worst, written - released);
   }
-  if (worst > 0.25 * double(before.history.size() * sizeof(double))) copy_through_staging(before, match, pairs, rows, threads);
-  else copy_releasing_as_read(before, match, pairs, rows, units, done_after);
+  if (worst > 0.25 * double(before.size() * sizeof(double))) copy_through_staging(before, stride, old_rows, match, after.data(), rows, threads);
+  else copy_releasing_as_read(before.data(), stride, match, after.data(), rows, units, done_after);
+  before = UninitialisedDoubles{};
+}
+
+}  // namespace
+
+void move_matched_rows(PairContacts&& before, const std::vector<std::uint32_t>& match, PairContacts& pairs, int threads) {
+  // The hot rows first: their old array is given back before the cold one is copied.
+  move_rows(before.history, pairs.stride, before.size(), match, pairs.history, threads);
+  move_rows(before.cold_history, pairs.cold_stride, before.size(), match, pairs.cold_history, threads);
   before = PairContacts{};
 }
 
+void PairContacts::resize_history() {
+  reserve_with_huge_pages(history, size() * stride);
+  history.resize(size() * stride);
+  reserve_with_huge_pages(cold_history, size() * cold_stride);
+  cold_history.resize(size() * cold_stride);
+}
+
 HistoryArchive archive_history(const PairContacts& pairs, const ParticleStore& particles) {
-  HistoryArchive archive(pairs.stride);
-  if (pairs.stride == 0) return archive;
+  HistoryArchive archive(pairs.whole_stride());
+  if (pairs.whole_stride() == 0) return archive;
   archive.reserve(pairs.size());
-  for (std::size_t k = 0; k < pairs.size(); ++k)
-    archive.add({particles.id[pairs.first[k]], particles.id[pairs.second[k]]}, pairs.history.data() + k * pairs.stride);
+  std::vector<double> whole(pairs.whole_stride());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    pairs.copy_whole_row(k, whole.data());
+    archive.add({particles.id[pairs.first[k]], particles.id[pairs.second[k]]}, whole.data());
+  }
   archive.seal();
   return archive;
 }
@@ -370,15 +390,13 @@ HistoryArchive archive_history(const WallContacts& contacts, const ParticleStore
 }
 
 void restore_history(PairContacts& pairs, const ParticleStore& particles, const HistoryArchive& archive, int threads) {
-  if (pairs.stride == 0) return;
+  if (pairs.whole_stride() == 0) return;
   const bool archived = archive.size() > 0;
   const auto n = static_cast<std::int64_t>(pairs.size());
 #pragma omp parallel for schedule(static) num_threads(threads) if(n >= min_parallel_items)
   for (std::int64_t k = 0; k < n; ++k) {
     const auto c = std::size_t(k);
-    const double* row = archived ? archive.find({particles.id[pairs.first[c]], particles.id[pairs.second[c]]}) : nullptr;
-    if (row) std::copy(row, row + pairs.stride, pairs.row(c));
-    else std::fill_n(pairs.row(c), pairs.stride, 0.0);
+    pairs.set_whole_row(c, archived ? archive.find({particles.id[pairs.first[c]], particles.id[pairs.second[c]]}) : nullptr);
   }
 }
 

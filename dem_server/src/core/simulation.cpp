@@ -36,7 +36,7 @@ std::vector<ContactLawSetting> all_materials(const SimulationSettings& settings)
 Simulation::Simulation(SimulationSettings settings) : settings_(std::move(settings)), materials_(all_materials(settings_)) {
   if (!(settings_.local_damping >= 0.0 && settings_.local_damping < 1.0)) throw UserError("local damping must be in [0, 1)");
   threads_ = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
-  pairs_.stride = settings_.particle_law.history_size();
+  pairs_.set_strides(settings_.particle_law.history_size(), settings_.particle_law.cold_history_size());
 }
 
 void Simulation::add_sphere(std::int64_t id, Vec3 centre, double radius, double density, MaterialId material) {
@@ -203,18 +203,16 @@ void Simulation::rebuild() {
     const auto k = std::size_t(i);
     if (particles_.id[pairs_.first[k]] > particles_.id[pairs_.second[k]]) std::swap(pairs_.first[k], pairs_.second[k]);
   }
-  pairs_.stride = settings_.particle_law.history_size();
+  pairs_.set_strides(settings_.particle_law.history_size(), settings_.particle_law.cold_history_size());
   if (by_slot) {
     const std::vector<std::uint32_t> old_to_new = inverse_order(order, threads_);
     std::vector<std::uint32_t> match = match_previous_pairs(previous, old_to_new, pairs_.first, pairs_.second, threads_);
     if (settings_.particle_law.bonded()) append_unmatched_bonds(previous, old_to_new, match);
-    reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
-    pairs_.history.resize(pairs_.size() * pairs_.stride);  // uninitialised: the threads write (and first touch) every row
+    pairs_.resize_history();  // uninitialised: the threads write (and first touch) every row
     move_matched_rows(std::move(previous), match, pairs_, threads_);
   } else {
     if (settings_.particle_law.bonded()) append_persistent_pairs(*pair_archive);
-    reserve_with_huge_pages(pairs_.history, pairs_.size() * pairs_.stride);
-    pairs_.history.resize(pairs_.size() * pairs_.stride);  // uninitialised: the threads write (and first touch) every row
+    pairs_.resize_history();  // uninitialised: the threads write (and first touch) every row
     restore_history(pairs_, particles_, *pair_archive, threads_);
     pair_archive.reset();  // its rows are in the lists now: not held through the rest of the rebuild
   }
@@ -332,7 +330,7 @@ void Simulation::drop_pairs_beyond_skin() {
       pairs_.first[kept] = i;
       pairs_.second[kept] = j;
       if (laws) pairs_.law_index[kept] = pairs_.law_index[k];
-      std::copy_n(pairs_.row(k), pairs_.stride, pairs_.row(kept));
+      pairs_.move_row(k, kept);
     }
     ++kept;
   }
@@ -340,6 +338,7 @@ void Simulation::drop_pairs_beyond_skin() {
   pairs_.second.resize(kept);
   if (laws) pairs_.law_index.resize(kept);
   pairs_.history.resize(kept * pairs_.stride);
+  pairs_.cold_history.resize(kept * pairs_.cold_stride);
 }
 
 void Simulation::install_bonds(bool across_materials_only) {
@@ -348,8 +347,7 @@ void Simulation::install_bonds(bool across_materials_only) {
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::uint32_t i = pairs_.first[k], j = pairs_.second[k];
     if (across_materials_only) {
-      const double* row = pairs_.row(k);
-      if (particles_.material[i] == particles_.material[j] || std::any_of(row, row + pairs_.stride, [](double v) { return v != 0.0; })) continue;
+      if (particles_.material[i] == particles_.material[j] || !pairs_.whole_row_is_zero(k)) continue;
     }
     const double gap = pairs_.law_index.empty() ? single_gap : materials_.pair_setting(pairs_.law_index[k]).bond_gap();
     const double radii = particles_.radius[i] + particles_.radius[j];

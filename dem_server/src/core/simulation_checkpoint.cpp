@@ -50,6 +50,8 @@ struct PairContactsLayout {
   std::vector<std::uint32_t> first, second;
   std::size_t stride;
   UninitialisedDoubles history;
+  std::size_t cold_stride;
+  UninitialisedDoubles cold_history;
   std::size_t constants_stride;
   UninitialisedDoubles constants;
   std::vector<std::uint16_t> law_index;
@@ -248,6 +250,8 @@ void Simulation::transfer_state(Archive& a, Self& s) {
   a.vector(s.pairs_.second);
   a.value(s.pairs_.stride);
   a.vector(s.pairs_.history);
+  a.value(s.pairs_.cold_stride);
+  a.vector(s.pairs_.cold_history);
   a.value(s.pairs_.constants_stride);
   a.vector(s.pairs_.constants);
   a.vector(s.pairs_.law_index);
@@ -296,7 +300,9 @@ void Simulation::check_pair_state(const StateReader& in) const {
     if (index >= materials_.count() * materials_.count()) in.fail("pair law indices of this model's " + std::to_string(materials_.count()) + " materials");
   for (const std::uint16_t m : particles_.material)
     if (m >= materials_.count()) in.fail("particle materials of this model's " + std::to_string(materials_.count()) + " materials");
-  if (pairs_.stride != settings_.particle_law.history_size()) in.fail("pair history rows of the particle law's width");
+  if (pairs_.whole_stride() != settings_.particle_law.history_size() || pairs_.cold_stride != settings_.particle_law.cold_history_size() ||
+      pairs_.history.size() != pairs_.size() * pairs_.stride || pairs_.cold_history.size() != pairs_.size() * pairs_.cold_stride)
+    in.fail("pair history rows of the particle law's width");
 }
 
 void Simulation::save_state(StateWriter& out) const { transfer_state(out, *this); }

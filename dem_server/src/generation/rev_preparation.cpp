@@ -45,16 +45,17 @@ void collect_pairs(const Simulation& sim, PreparedRev& rev) {
   const ParticleStore& p = sim.particles();
   const PeriodicSpace space(rev.cell);
   const Vec3 l = rev.cell.length();
-  rev.stride = pairs.stride;
+  rev.stride = pairs.whole_stride();
+  std::vector<double> row(rev.stride);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
-    const double* row = pairs.history.data() + k * pairs.stride;
-    if (std::all_of(row, row + pairs.stride, [](double v) { return v == 0.0; })) continue;
+    if (pairs.whole_row_is_zero(k)) continue;
+    pairs.copy_whole_row(k, row.data());
     const std::uint32_t i = pairs.first[k], j = pairs.second[k];
     const Vec3 xi = rev.cell.wrap(p.position[i]), xj = rev.cell.wrap(p.position[j]);
     const Vec3 shift = xi + space.branch(xi, xj) - xj;  // whole cell lengths
     rev.pairs.push_back({std::uint32_t(p.id[i]), std::uint32_t(p.id[j]),
                          {int(std::lround(shift.x / l.x)), int(std::lround(shift.y / l.y)), int(std::lround(shift.z / l.z))}});
-    rev.rows.insert(rev.rows.end(), row, row + pairs.stride);
+    rev.rows.insert(rev.rows.end(), row.begin(), row.end());
   }
 }
 

@@ -115,6 +115,10 @@ std::size_t ContactLawSetting::history_size() const {
   return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::history_size; }, law);
 }
 
+std::size_t ContactLawSetting::cold_history_size() const {
+  return std::visit([](const auto& l) { return cold_history_size_of<std::decay_t<decltype(l)>>(); }, law);
+}
+
 bool ContactLawSetting::has_couple() const {
   return std::visit([](const auto& l) { return std::decay_t<decltype(l)>::has_couple; }, law);
 }

@@ -9,10 +9,10 @@ namespace dfc::dem {
 std::vector<HistoryColumn> DamageBondLaw::history_columns() {
   return {{"bond_state", "-"},        {"damage", "-"},           {"opening", "m"},          {"slip_x", "m"},
           {"slip_y", "m"},            {"slip_z", "m"},           {"twist", "rad"},          {"bend_x", "rad"},
-          {"bend_y", "rad"},          {"bend_z", "rad"},         {"plastic_opening", "m"},  {"plastic_slip_x", "m"},
-          {"plastic_slip_y", "m"},    {"plastic_slip_z", "m"},   {"plastic_bend_x", "rad"}, {"plastic_bend_y", "rad"},
-          {"plastic_bend_z", "rad"},  {"accumulated_plastic_opening", "m"}, {"accumulated_plastic_slip", "m"},
-          {"accumulated_plastic_bend", "rad"}, {"shear_force_x", "N"}, {"shear_force_y", "N"}, {"shear_force_z", "N"}};
+          {"bend_y", "rad"},          {"bend_z", "rad"},         {"accumulated_plastic_opening", "m"}, {"accumulated_plastic_slip", "m"},
+          {"accumulated_plastic_bend", "rad"}, {"shear_force_x", "N"}, {"shear_force_y", "N"}, {"shear_force_z", "N"},
+          {"plastic_opening", "m"},   {"plastic_slip_x", "m"},   {"plastic_slip_y", "m"},   {"plastic_slip_z", "m"},
+          {"plastic_bend_x", "rad"},  {"plastic_bend_y", "rad"}, {"plastic_bend_z", "rad"}};
 }
 
 DamageBondLaw DamageBondLaw::from_parameters(const LawParameters& p) {
@@ -61,9 +61,10 @@ double DamageBondLaw::yield(Strain& e, const double* c, const ContactKinematics&
   return std::max(damage_value, damage_from(h[accumulated_opening], h[accumulated_slip], h[accumulated_bend]));
 }
 
-void DamageBondLaw::break_bond(double elastic_opening, double* h) const noexcept {
+void DamageBondLaw::break_bond(double elastic_opening, double* h, double* p) const noexcept {
   const double normal_term = h[accumulated_opening] / u_cn;
   const bool tensile = elastic_opening >= 0.0 && normal_term >= h[accumulated_slip] / u_cs && normal_term >= h[accumulated_bend] / theta_c;
+  if (plastic_in_use(h)) std::fill_n(p, cold_history_size, 0.0);
   for (std::size_t c = 1; c < linear_shear; ++c) h[c] = 0.0;
   h[damage] = 1.0;
   set_bond_state(h, tensile ? BondState::broken_tension : BondState::broken_shear);

@@ -152,7 +152,8 @@ bool evaluate_pair_contacts(const PairLaws<Law>& laws, ParticleStore& p, PairCon
         const std::size_t k = first + o;
         // The history row of a pair a few ahead, every cache line of it: this
         // loop reads each row's first line (a bond's state) and the stages
-        // below the rest, and in a model larger than the caches those lines
+        // below the rest (not the cold row of a SplitsHistory law, read only by
+        // the bonds that have yielded), and in a model larger than the caches those lines
         // come from memory (prefetch only: the same results). Bonded laws
         // only: an unbonded row is 3 doubles, and there the prefetches cost
         // more than they save (-4 to -5 % on the peer benchmark, docs/dem_benchmarks.md).
@@ -260,7 +261,8 @@ bool evaluate_pair_contacts(const PairLaws<Law>& laws, ParticleStore& p, PairCon
           const ContactKinematics& kin = stage.kinematics[a];
           ContactForce f;
           const Law& law = laws[k];
-          if constexpr (RotatesInPlaneHistory<Law>) f = law.evaluate_in_plane(kin, pairs.constants_row(k), history);
+          if constexpr (SplitsHistory<Law>) f = law.evaluate_in_plane(kin, pairs.constants_row(k), history, pairs.cold_row(k));
+          else if constexpr (RotatesInPlaneHistory<Law>) f = law.evaluate_in_plane(kin, pairs.constants_row(k), history);
           else if constexpr (HasPairConstants<Law>) f = law.evaluate(kin, pairs.constants_row(k), history);
           else f = law.evaluate(kin, history);
           const Vec3 point = stage.point[a];

@@ -66,7 +66,10 @@ struct ContactLawSetting {
   std::vector<double> values;  ///< in info->parameters order
   ContactLaw law;
 
+  /// Doubles of history per contact, a whole row (the archive's, a snapshot's columns).
   [[nodiscard]] std::size_t history_size() const;
+  /// The last columns of a row a pair keeps in its second row (contact_model.hpp SplitsHistory); 0 for most laws.
+  [[nodiscard]] std::size_t cold_history_size() const;
   [[nodiscard]] bool has_couple() const;
   /// For particles of radius up to radius_max (m): deformability laws scale with R.
   [[nodiscard]] StiffnessBound stiffness_bound(double radius_max) const;

@@ -25,10 +25,17 @@ namespace dfc::dem {
 struct PairContacts {
   std::vector<std::uint32_t> first;
   std::vector<std::uint32_t> second;
-  std::size_t stride = 0;  ///< history doubles per contact (the law's history_size)
+  /// History doubles per contact in `history`: the law's history_size less
+  /// its cold columns (contact_model.hpp SplitsHistory).
+  std::size_t stride = 0;
   /// size() * stride, row per contact. Left uninitialised when resized: a
   /// rebuild writes every row in parallel (move_matched_rows, restore_history).
   UninitialisedDoubles history;
+  /// The law's cold columns (contact_model.hpp SplitsHistory), size() *
+  /// cold_stride, row per contact; empty for most laws. A contact's whole
+  /// row is its `history` row followed by this one (whole_row).
+  std::size_t cold_stride = 0;
+  UninitialisedDoubles cold_history;
   /// The law's pair constants (contact_model.hpp HasPairConstants), row per
   /// contact of constants_stride doubles; every row set, in parallel, at
   /// every list rebuild (compute_pair_constants), so left uninitialised when resized.
@@ -41,7 +48,43 @@ struct PairContacts {
 
   [[nodiscard]] std::size_t size() const noexcept { return first.size(); }
   [[nodiscard]] double* row(std::size_t k) noexcept { return history.data() + k * stride; }
+  [[nodiscard]] const double* row(std::size_t k) const noexcept { return history.data() + k * stride; }
+  [[nodiscard]] double* cold_row(std::size_t k) noexcept { return cold_history.data() + k * cold_stride; }
   [[nodiscard]] const double* constants_row(std::size_t k) const noexcept { return constants.data() + k * constants_stride; }
+  /// Doubles of a whole row (the law's history_size).
+  [[nodiscard]] std::size_t whole_stride() const noexcept { return stride + cold_stride; }
+  /// Sets the row widths of `law_history_size` doubles, the last `cold_size` of them cold.
+  void set_strides(std::size_t law_history_size, std::size_t cold_size) noexcept {
+    stride = law_history_size - cold_size;
+    cold_stride = cold_size;
+  }
+  /// Sizes both history arrays for size() contacts, uninitialised.
+  void resize_history();
+  /// Contact k's whole row into out (whole_stride() doubles).
+  void copy_whole_row(std::size_t k, double* out) const noexcept {
+    std::copy_n(history.data() + k * stride, stride, out);
+    std::copy_n(cold_history.data() + k * cold_stride, cold_stride, out + stride);
+  }
+  /// Sets contact k's whole row from `whole` (whole_stride() doubles), or to zeros for nullptr.
+  void set_whole_row(std::size_t k, const double* whole) noexcept {
+    if (whole) {
+      std::copy_n(whole, stride, row(k));
+      std::copy_n(whole + stride, cold_stride, cold_row(k));
+    } else {
+      std::fill_n(row(k), stride, 0.0);
+      std::fill_n(cold_row(k), cold_stride, 0.0);
+    }
+  }
+  /// True when every double of contact k's whole row is zero (a fresh contact).
+  [[nodiscard]] bool whole_row_is_zero(std::size_t k) const noexcept {
+    const auto zero = [](double v) { return v == 0.0; };
+    return std::all_of(row(k), row(k) + stride, zero) && std::all_of(cold_history.data() + k * cold_stride, cold_history.data() + (k + 1) * cold_stride, zero);
+  }
+  /// Moves contact `from`'s rows onto contact `to` (to <= from: compaction).
+  void move_row(std::size_t from, std::size_t to) noexcept {
+    std::copy_n(history.data() + from * stride, stride, row(to));
+    std::copy_n(cold_history.data() + from * cold_stride, cold_stride, cold_row(to));
+  }
 };
 
 /// Particle–facet candidates of one wall, sorted by particle then facet.

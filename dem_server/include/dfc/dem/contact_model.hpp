@@ -122,6 +122,32 @@ concept RotatesInPlaneHistory = HasPairConstants<Law> && requires(const Law law,
   { law.evaluate_in_plane(k, constants, history) } -> std::same_as<ContactForce>;
 };
 
+/// Optional part of a law whose history has columns most contacts hold at
+/// zero for a whole run (damage_bond's plastic parts, zero until a bond
+/// yields): the last Law::cold_history_size of its history_size columns live
+/// in a second row (PairContacts::cold_history), which the pair loop neither
+/// prefetches nor passes through the stage that turns in-plane vectors; the
+/// law reads and writes it where it needs it. A whole row (tests, the history
+/// archive, snapshots, the single-row evaluate) is the hot columns followed by
+/// the cold ones. Why: the paper model streams its pair rows from memory
+/// every step, and 7 of damage_bond's 23 doubles are zeros there.
+/// `evaluate_in_plane(k, constants, hot, cold)` is RotatesInPlaneHistory's
+/// evaluate_in_plane on the two parts of the row (Law::in_plane_history
+/// offsets are in the hot part).
+template <class Law>
+concept SplitsHistory = RotatesInPlaneHistory<Law> && requires(const Law law, const ContactKinematics& k, const double* constants, double* hot,
+                                                               double* cold) {
+  { Law::cold_history_size } -> std::convertible_to<std::size_t>;
+  { law.evaluate_in_plane(k, constants, hot, cold) } -> std::same_as<ContactForce>;
+};
+
+/// Law::cold_history_size, or 0 for a law whose history is one row.
+template <class Law>
+[[nodiscard]] constexpr std::size_t cold_history_size_of() noexcept {
+  if constexpr (SplitsHistory<Law>) return Law::cold_history_size;
+  else return 0;
+}
+
 /// Optional part of a law that acts across a gap (a bond): true when this
 /// contact's history says it carries nothing while the surfaces are apart
 /// (e.g. no intact bond), where evaluate would return zero and only call

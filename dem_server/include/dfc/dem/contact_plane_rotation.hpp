@@ -19,6 +19,7 @@
 //          "twirling" correction; Itasca PFC3D 3.x Theory and Background, the
 //          second rotation of the shear force, by the mean spin of the two
 //          bodies about the normal).
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstddef>
@@ -119,27 +120,34 @@ struct ContactTwirl {
 /// step's normal (Law::previous_normal_offset, 3 doubles) tilts them all with
 /// one ContactFrameRotation and stores the new normal; any other projects and
 /// rescales each (rotate_into_contact_plane). Both then twirl them (ContactTwirl).
+/// The vectors at `offsets` of `row` turned into k's contact plane by
+/// projection and twirl (the rule of a law without a previous normal).
+// A +0 vector turns into +0 exactly (rotate_into_contact_plane returns it as
+// it is; the twirl gives cos·(+0) + sin·(±0) = +0 for cos > 0, a turn below
+// 90° in a step), so it is left as it is: the same bits without the
+// arithmetic, and without the store that would dirty its cache line (most
+// rows of a bonded model hold such vectors: the contact force of an intact bond).
+template <std::size_t N>
+[[gnu::always_inline]] inline void rotate_stored_vectors(double* row, const std::array<std::size_t, N>& offsets, const ContactKinematics& k) noexcept {
+  const ContactTwirl twirl = ContactTwirl::of(k);
+  const bool keep_zeros = twirl.cos_angle > 0.0;
+  for (const std::size_t offset : offsets) {
+    if (keep_zeros && is_positive_zero_vec3(row + offset)) continue;
+    store_vec3(row + offset, turn_with_contact_plane(load_vec3(row + offset), k.normal, twirl));
+  }
+}
+
 template <class Law>
 [[gnu::always_inline]] inline void rotate_in_plane_history(double* history, const ContactKinematics& k) noexcept {
-  const ContactTwirl twirl = ContactTwirl::of(k);
   if constexpr (requires { Law::previous_normal_offset; }) {
+    const ContactTwirl twirl = ContactTwirl::of(k);
     double* stored_normal = history + Law::previous_normal_offset;
     const ContactFrameRotation tilt = ContactFrameRotation::between(load_vec3(stored_normal), k.normal);
     for (const std::size_t offset : Law::in_plane_history)
       store_vec3(history + offset, twirl.apply(tilt.apply(load_vec3(history + offset)), k.normal));
     store_vec3(stored_normal, k.normal);
   } else {
-    // A +0 vector turns into +0 exactly (rotate_into_contact_plane returns it
-    // as it is; the twirl gives cos·(+0) + sin·(±0) = +0 for cos > 0, a turn
-    // below 90° in a step), so it is left as it is: the same bits without
-    // the arithmetic, and without the store that would dirty its cache line
-    // (most rows of a bonded model hold such vectors: plastic parts of bonds
-    // that never yielded, the contact force of an intact bond).
-    const bool keep_zeros = twirl.cos_angle > 0.0;
-    for (const std::size_t offset : Law::in_plane_history) {
-      if (keep_zeros && is_positive_zero_vec3(history + offset)) continue;
-      store_vec3(history + offset, turn_with_contact_plane(load_vec3(history + offset), k.normal, twirl));
-    }
+    rotate_stored_vectors(history, Law::in_plane_history, k);
   }
 }
 

@@ -33,8 +33,14 @@
 // is the largest term of the damage exponent; broken_shear otherwise (shear,
 // bending and compressive crushing).
 //
-// History (23): state, D, u_n, u_s (3), θ_t, θ_b (3), u_n^p, u_s^p (3),
-// θ_b^p (3), ū_n^p, ū_s^p, θ̄_b^p, linear shear force (3).
+// History (23): state, D, u_n, u_s (3), θ_t, θ_b (3), ū_n^p, ū_s^p, θ̄_b^p,
+// linear shear force (3) in the row every step reads (16 doubles, two cache
+// lines), then the plastic parts u_n^p, u_s^p (3), θ_b^p (3) in a second row
+// (contact_model.hpp SplitsHistory) read and written only once the bond has
+// yielded: before that they are zero, and so are the accumulated measures,
+// which tell (plastic_in_use). The paper model's pairs at rest are mostly
+// intact bonds: their 56 bytes of zeros per step no longer come from memory
+// (docs/dem_benchmarks.md).
 #include <array>
 #include <cmath>
 #include <span>
@@ -51,12 +57,16 @@ namespace dfc::dem {
 
 struct DamageBondLaw {
   static constexpr std::string_view keyword = "damage_bond";
+  /// Columns of the row every step reads (and of a whole row, hot then cold).
   enum Column : std::size_t {
     state = 0, damage = 1, opening = 2, slip = 3, twist = 6, bend = 7,
-    plastic_opening = 10, plastic_slip = 11, plastic_bend = 14,
-    accumulated_opening = 17, accumulated_slip = 18, accumulated_bend = 19, linear_shear = 20,
+    accumulated_opening = 10, accumulated_slip = 11, accumulated_bend = 12, linear_shear = 13,
   };
+  /// Columns of the second row (the plastic parts), from its start.
+  enum PlasticColumn : std::size_t { plastic_opening = 0, plastic_slip = 1, plastic_bend = 4 };
   static constexpr std::size_t history_size = 23;
+  static constexpr std::size_t cold_history_size = 7;  ///< the plastic parts: columns 16-22 of a whole row
+  static constexpr std::size_t hot_history_size = history_size - cold_history_size;
   static constexpr bool has_couple = true;
   static constexpr bool acts_across_gap = true;
   static constexpr bool bonded = true;
@@ -132,18 +142,30 @@ struct DamageBondLaw {
   /// D of the corrected Eq. 2 from the accumulated plastic measures.
   [[nodiscard]] double damage_from(double opening_p, double slip_p, double bend_p) const noexcept;
 
+  /// True once the bond has yielded: its plastic parts (the cold row) may be
+  /// non-zero. Before, they are +0 (a new row, a broken bond's cleared ones),
+  /// as are the accumulated measures: any plastic increment adds its size to
+  /// them (yield), so a non-zero plastic part comes with a positive measure.
+  [[nodiscard]] static bool plastic_in_use(const double* h) noexcept {
+    return h[accumulated_opening] != 0.0 || h[accumulated_slip] != 0.0 || h[accumulated_bend] != 0.0;
+  }
+
   /// Elastic trial, return to the envelope, damage and breakage of a bonded
   /// contact whose stored vectors are already in k's contact plane; returns
-  /// the bond's force and couple on the first body.
-  [[nodiscard]] [[gnu::always_inline]] ContactForce update_bond(const ContactKinematics& k, const double* c, double* h) const noexcept {
-    // 1. Total displacements and the plastic parts.
+  /// the bond's force and couple on the first body. h is the row every step
+  /// reads, p the plastic parts (read and written only where plastic_in_use,
+  /// before or after the return).
+  [[nodiscard]] [[gnu::always_inline]] ContactForce update_bond(const ContactKinematics& k, const double* c, double* h, double* p) const noexcept {
+    // 1. Total displacements and the plastic parts (+0 before the first yield:
+    // u - (+0) is u to the bit, so the elastic parts are those of the stored zeros).
     const BondIncrements d = bond_increments(k);
     const double u_n = h[opening] + d.normal;
     const Vec3 u_s = load_vec3(h + slip) + d.shear;
     const double theta_t = h[twist] + d.twist;
     const Vec3 theta_b = load_vec3(h + bend) + d.bend;
-    const double u_np = h[plastic_opening];
-    const Vec3 u_sp = load_vec3(h + plastic_slip), theta_bp = load_vec3(h + plastic_bend);
+    const bool yielded = plastic_in_use(h);
+    const double u_np = yielded ? p[plastic_opening] : 0.0;
+    const Vec3 u_sp = yielded ? load_vec3(p + plastic_slip) : Vec3{}, theta_bp = yielded ? load_vec3(p + plastic_bend) : Vec3{};
     Strain e{.opening = u_n - u_np, .slip = u_s - u_sp, .bend = theta_b - theta_bp, .plastic_opening = u_np, .plastic_slip = u_sp, .plastic_bend = theta_bp};
 
     // 2.-4. Elastic trial, return to the envelope and damage, unless the trial
@@ -152,15 +174,18 @@ struct DamageBondLaw {
     if (!surely_elastic(e, c, k)) {
       damage_value = yield(e, c, k, h);
       // Otherwise the plastic parts are the stored ones (already in this
-      // plane): not stored again, which would only dirty their cache line.
-      h[plastic_opening] = e.plastic_opening;
-      store_vec3(h + plastic_slip, e.plastic_slip);
-      store_vec3(h + plastic_bend, e.plastic_bend);
+      // plane): not stored again, which would only dirty their cache line;
+      // nor where the return left them at +0 (no yield yet).
+      if (plastic_in_use(h)) {
+        p[plastic_opening] = e.plastic_opening;
+        store_vec3(p + plastic_slip, e.plastic_slip);
+        store_vec3(p + plastic_bend, e.plastic_bend);
+      }
     }
 
     // 5. Breakage (§3.6): the bond and its displacements are removed.
     if (damage_value > breakage_damage) {
-      break_bond(e.opening, h);
+      break_bond(e.opening, h, p);
       return {};
     }
     h[damage] = damage_value;
@@ -183,7 +208,8 @@ struct DamageBondLaw {
   /// Adds `force` (on the first body) to a bonded contact's load through its
   /// elastic displacements: Δu_n = ΔN/((1-D) k̄_n A), Δu_s = ΔV/((1-D) k̄_s A)
   /// (Eq. 1), so the bond holds a state it could have reached elastically
-  /// (seam balance, seam_balance.hpp). The envelope is checked at the next evaluation.
+  /// (seam balance, seam_balance.hpp). The envelope is checked at the next
+  /// evaluation. Reads and writes the row every step reads only.
   void add_bond_load(double* history, const ContactKinematics& k, const Vec3& force) const noexcept {
     const double area = bond_section(k, radius_multiplier).area;
     const double kn = deformability_bond_kn(k, bond_emod), ks = kn / bond_kratio, intact = 1.0 - history[damage];
@@ -192,6 +218,7 @@ struct DamageBondLaw {
     store_vec3(history + slip, load_in_plane(history + slip, k.normal, ContactTwirl::of(k)) + (1.0 / (intact * ks * area)) * (force - normal * k.normal));
   }
 
+  /// A whole row (hot then cold columns, contiguous: tests, the history archive).
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, double* history) const noexcept {
     double c[constants_size];
     pair_constants(k, c);
@@ -200,23 +227,34 @@ struct DamageBondLaw {
 
   [[nodiscard]] ContactForce evaluate(const ContactKinematics& k, const double* c, double* history) const noexcept {
     rotate_in_plane_history<DamageBondLaw>(history, k);
-    return evaluate_in_plane(k, c, history);
+    return evaluate_in_plane(k, c, history, history + hot_history_size);
   }
 
-  /// The bond's elastic and plastic slip and bending and the linear contact's
-  /// shear force turn with the contact plane (RotatesInPlaneHistory). All of
-  /// them turn every step, bonded or not: a vector a law does not use at that
-  /// step is +0 (a new row, a broken bond's cleared columns, a linear shear
-  /// force that separate() reset), and the turn keeps +0 as +0 exactly
-  /// (rotate_into_contact_plane returns a zero vector as it is; the twirl adds
-  /// cos·(+0) = +0 and sin·(±0), and +0 + ±0 = +0, for cos > 0, i.e. a turn
-  /// below 90° per step), so the results are those of turning them only where used.
-  static constexpr std::array<std::size_t, 5> in_plane_history{slip, bend, plastic_slip, plastic_bend, linear_shear};
+  /// The elastic slip and bending and the linear contact's shear force turn
+  /// with the contact plane (RotatesInPlaneHistory), bonded or not: a vector
+  /// a law does not use at that step is +0 (a new row, a broken bond's
+  /// cleared columns, a linear shear force that separate() reset), and the
+  /// turn keeps +0 as +0 exactly (rotate_into_contact_plane returns a zero
+  /// vector as it is; the twirl adds cos·(+0) = +0 and sin·(±0), and +0 + ±0
+  /// = +0, for cos > 0, i.e. a turn below 90° per step), so the results are
+  /// those of turning them only where used. The plastic parts (cold_in_plane_history)
+  /// turn the same way, in evaluate_in_plane, once the bond has yielded; before, they are +0.
+  static constexpr std::array<std::size_t, 3> in_plane_history{slip, bend, linear_shear};
+  static constexpr std::array<std::size_t, 2> cold_in_plane_history{plastic_slip, plastic_bend};
 
-  /// evaluate() for a history already carried into k's contact plane.
-  [[nodiscard]] [[gnu::always_inline]] ContactForce evaluate_in_plane(const ContactKinematics& k, const double* c, double* history) const noexcept {
+  /// The same on a whole row (hot then cold columns, contiguous).
+  [[nodiscard]] ContactForce evaluate_in_plane(const ContactKinematics& k, const double* c, double* history) const noexcept {
+    return evaluate_in_plane(k, c, history, history + hot_history_size);
+  }
+
+  /// evaluate() for a row whose in_plane_history vectors are already carried
+  /// into k's contact plane; p is the cold row (the plastic parts), turned here where in use.
+  [[nodiscard]] [[gnu::always_inline]] ContactForce evaluate_in_plane(const ContactKinematics& k, const double* c, double* history, double* p) const noexcept {
     ContactForce out{};
-    if (is_bonded(bond_state(history))) out = update_bond(k, c, history);
+    if (is_bonded(bond_state(history))) {
+      if (plastic_in_use(history)) rotate_stored_vectors(p, cold_in_plane_history, k);
+      out = update_bond(k, c, history, p);
+    }
     // The linear contact acts once the bond is damaged or gone (§3.6).
     if (bond_state(history) == BondState::intact || k.overlap <= 0.0) {
       separate(history);
@@ -252,10 +290,10 @@ struct DamageBondLaw {
   /// never lowered). Updates e and the accumulated measures in h; returns D.
   [[nodiscard]] double yield(Strain& e, const double* c, const ContactKinematics& k, double* h) const noexcept;
 
-  /// Step 5 of update_bond: clears the bond and labels its failure.
-  void break_bond(double elastic_opening, double* h) const noexcept;
+  /// Step 5 of update_bond: clears the bond (both rows) and labels its failure.
+  void break_bond(double elastic_opening, double* h, double* p) const noexcept;
 };
 
-static_assert(RotatesInPlaneHistory<DamageBondLaw> && SkipsIdleGaps<DamageBondLaw>);
+static_assert(SplitsHistory<DamageBondLaw> && SkipsIdleGaps<DamageBondLaw>);
 
 }  // namespace dfc::dem
