@@ -1,4 +1,4 @@
-#include "dfc/fdm/mohr_coulomb_model.hpp"
+#include "dfc/constitutive/mohr_coulomb_model.hpp"
 
 #include <cmath>
 
@@ -7,7 +7,7 @@
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/errors.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 namespace {
 
@@ -96,4 +96,4 @@ void MohrCoulombModel::update(const StrainIncrement& increment, Stress& stress, 
   state[kFailureNow] = double(corrected.failure);
 }
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -8,13 +8,13 @@
 #include <string>
 #include <string_view>
 
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/constitutive/constitutive_model.hpp"
 
 namespace dfc {
 class ConfigReader;
 }
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 struct ConstitutiveModelEntry {
   std::string_view keyword;
@@ -27,4 +27,4 @@ struct ConstitutiveModelEntry {
 /// nullptr when unknown.
 [[nodiscard]] const ConstitutiveModelEntry* find_constitutive_model(std::string_view keyword);
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -37,9 +37,9 @@
 // stress is kept (radial return in the deviatoric plane).
 #include <optional>
 
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/constitutive/constitutive_model.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 struct StructuredCamClayParameters {
   ElasticModuli moduli;
@@ -84,4 +84,4 @@ struct CamClayReturn {
 /// surface (drained triaxial: slope 3), Pa; for hand calculations and tests.
 [[nodiscard]] double cam_clay_yield_q_on_path(double p0, double slope, const CamClayHardening& h, const StructuredCamClayParameters& m);
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -1,9 +1,9 @@
-#include "dfc/fdm/cam_clay_return.hpp"
+#include "dfc/constitutive/cam_clay_return.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 namespace {
 
@@ -142,4 +142,4 @@ double cam_clay_yield_q_on_path(double p0, double slope, const CamClayHardening&
   return (-qb + std::sqrt(qb * qb - 4.0 * qa * qc)) / (2.0 * qa);
 }
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -1,13 +1,13 @@
-#include "dfc/fdm/model_registry.hpp"
+#include "dfc/constitutive/model_registry.hpp"
 
 #include <algorithm>
 #include <array>
 
-#include "dfc/fdm/elastic_model.hpp"
-#include "dfc/fdm/mohr_coulomb_model.hpp"
-#include "dfc/fdm/structured_cam_clay_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
+#include "dfc/constitutive/mohr_coulomb_model.hpp"
+#include "dfc/constitutive/structured_cam_clay_model.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 namespace {
 
@@ -28,4 +28,4 @@ const ConstitutiveModelEntry* find_constitutive_model(std::string_view keyword) 
 }
 
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

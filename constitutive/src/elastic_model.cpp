@@ -1,8 +1,8 @@
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 
 #include "dfc/common/config_reader.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 ElasticModuli moduli_from_young_poisson(double young_modulus, double poisson_ratio) {
   return {young_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)), young_modulus / (2.0 * (1.0 + poisson_ratio))};
@@ -43,4 +43,4 @@ void ElasticModel::update(const StrainIncrement& increment, Stress& stress, Stat
   stress += elastic_stress_increment(moduli_, increment.strain);
 }
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

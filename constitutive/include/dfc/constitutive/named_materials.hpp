@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 struct NamedMaterial {
   std::string_view name;
@@ -24,4 +24,4 @@ struct NamedMaterial {
 /// For --help: one line per preset.
 [[nodiscard]] std::string describe_named_materials();
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -8,10 +8,10 @@
 #include <array>
 #include <memory>
 
-#include "dfc/fdm/cam_clay_return.hpp"
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/cam_clay_return.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 class StructuredCamClayModel final : public ConstitutiveModel {
  public:
@@ -44,4 +44,4 @@ class StructuredCamClayModel final : public ConstitutiveModel {
   StructuredCamClayParameters parameters_;
 };
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

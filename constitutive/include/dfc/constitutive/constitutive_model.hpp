@@ -1,18 +1,18 @@
 #pragma once
-// Constitutive model interface (docs/theory/fdm.md §1.6). The solver calls a model
-// once per tetrahedron per step with the strain increment Δε = ξ Δt (after
-// mixed discretization) and the tetrahedron's stress, which the model updates
-// in place. Plastic models keep history per tetrahedron in a slice of doubles
-// (`state_size()` of them) owned by the solver, like the Itasca SDK `State`.
+// Constitutive model interface (docs/theory/fdm.md §1.6), shared by fdm_server
+// and continuum_server. A solver calls a model once per element (tetrahedron,
+// triangle) per step with the strain increment Δε = ξ Δt (after mixed
+// discretization) and the element's stress, which the model updates in place.
+// Plastic models keep history per element in a slice of doubles (`state_size()`
+// of them) owned by the solver, like the Itasca SDK `State`.
 #include <cstddef>
 #include <span>
 #include <string_view>
 
-#include "dfc/fdm/types.hpp"
+#include "dfc/constitutive/sym_tensor.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
-using Stress = SymTensor;  ///< Pa, tension positive
 /// Per-tetrahedron history variables of a model (e.g. plastic strains, p_s, p_t).
 using StateSpan = std::span<double>;
 
@@ -57,4 +57,4 @@ class ConstitutiveModel {
   [[nodiscard]] virtual std::span<const std::string_view> state_names() const { return {}; }
 };
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -1,10 +1,10 @@
-#include "dfc/fdm/mohr_coulomb_return.hpp"
+#include "dfc/constitutive/mohr_coulomb_return.hpp"
 
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 namespace {
 
@@ -81,4 +81,4 @@ PrincipalReturn mohr_coulomb_return(const Vec3& principal_trial, const MohrCoulo
   return out;
 }
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

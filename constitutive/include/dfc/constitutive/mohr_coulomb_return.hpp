@@ -8,9 +8,9 @@
 //
 // These are pure functions of the trial principal stresses; the model class
 // (mohr_coulomb_model.hpp) does the spectral decomposition and keeps history.
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/constitutive/constitutive_model.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 /// Strength parameters as the user gives them.
 struct MohrCoulombStrength {
@@ -51,4 +51,4 @@ struct PrincipalReturn {
 /// shear or tension"), correct, then apply the apex correction.
 [[nodiscard]] PrincipalReturn mohr_coulomb_return(const Vec3& principal_trial, const MohrCoulombConstants& c);
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -10,10 +10,10 @@
 #include <cmath>
 
 #include "dfc/common/errors.hpp"
-#include "dfc/fdm/material_point_driver.hpp"
-#include "dfc/fdm/structured_cam_clay_model.hpp"
+#include "dfc/constitutive/material_point_driver.hpp"
+#include "dfc/constitutive/structured_cam_clay_model.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 namespace {
 
 // Ciantia et al. 2024 Table 2 (the chalk_snw preset): E = 1 GPa, ν = 0.12, p_s0 = 3 MPa,
@@ -219,4 +219,4 @@ TEST(StructuredCamClay, InitialStressOutsideTheSurfaceRaisesPsToNormalConsolidat
 }
 
 }  // namespace
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

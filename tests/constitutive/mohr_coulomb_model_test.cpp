@@ -8,11 +8,11 @@
 #include <numbers>
 
 #include "dfc/common/errors.hpp"
-#include "dfc/fdm/elastic_model.hpp"
-#include "dfc/fdm/material_point_driver.hpp"
-#include "dfc/fdm/mohr_coulomb_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
+#include "dfc/constitutive/material_point_driver.hpp"
+#include "dfc/constitutive/mohr_coulomb_model.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 namespace {
 
 // E = 100 MPa, ν = 0.2; c = 50 kPa, φ = 30° (N_φ = 3), ψ = 10°, σ_t = 20 kPa.
@@ -163,4 +163,4 @@ TEST(MohrCoulombElement, UniaxialTensionStopsAtTheTensileStrength) {
 }
 
 }  // namespace
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -7,9 +7,9 @@
 #include <span>
 #include <vector>
 
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/constitutive/constitutive_model.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 class MaterialPointDriver {
  public:
@@ -46,4 +46,4 @@ class MaterialPointDriver {
   std::vector<double> state_;
 };
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

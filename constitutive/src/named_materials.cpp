@@ -1,9 +1,9 @@
-#include "dfc/fdm/named_materials.hpp"
+#include "dfc/constitutive/named_materials.hpp"
 
 #include <algorithm>
 #include <array>
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 namespace {
 
@@ -49,4 +49,4 @@ std::string describe_named_materials() {
   return text;
 }
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

@@ -3,13 +3,13 @@
 #include <array>
 #include <memory>
 
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/constitutive/constitutive_model.hpp"
 
 namespace dfc {
 class ConfigReader;
 }
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 /// K = E/(3(1−2ν)), G = E/(2(1+ν)).
 [[nodiscard]] ElasticModuli moduli_from_young_poisson(double young_modulus, double poisson_ratio);
@@ -37,4 +37,4 @@ class ElasticModel final : public ConstitutiveModel {
   ElasticModuli moduli_;
 };
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

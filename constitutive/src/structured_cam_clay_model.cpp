@@ -1,4 +1,4 @@
-#include "dfc/fdm/structured_cam_clay_model.hpp"
+#include "dfc/constitutive/structured_cam_clay_model.hpp"
 
 #include <cmath>
 #include <limits>
@@ -6,7 +6,7 @@
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/errors.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 namespace {
 
@@ -118,4 +118,4 @@ bool StructuredCamClayModel::update_once(const SymTensor& strain_increment, Stre
   return true;
 }
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

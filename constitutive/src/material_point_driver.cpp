@@ -1,4 +1,4 @@
-#include "dfc/fdm/material_point_driver.hpp"
+#include "dfc/constitutive/material_point_driver.hpp"
 
 #include <cmath>
 
@@ -6,7 +6,7 @@
 
 #include "dfc/common/errors.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 namespace {
 
@@ -71,4 +71,4 @@ void MaterialPointDriver::triaxial_step(double axial_strain_increment) {
   strain_step(increment(lateral));
 }
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive

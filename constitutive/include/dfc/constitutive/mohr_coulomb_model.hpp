@@ -7,10 +7,10 @@
 #include <array>
 #include <memory>
 
-#include "dfc/fdm/elastic_model.hpp"
-#include "dfc/fdm/mohr_coulomb_return.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
+#include "dfc/constitutive/mohr_coulomb_return.hpp"
 
-namespace dfc::fdm {
+namespace dfc::constitutive {
 
 class MohrCoulombModel final : public ConstitutiveModel {
  public:
@@ -40,4 +40,4 @@ class MohrCoulombModel final : public ConstitutiveModel {
   MohrCoulombConstants constants_;
 };
 
-}  // namespace dfc::fdm
+}  // namespace dfc::constitutive
