@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <map>
 
+#include "dfc/continuum/boundary_edges.hpp"
+#include "dfc/continuum/delaunay_retriangulation.hpp"
 #include "dfc/continuum/nodal_average.hpp"
 
 namespace dfc::continuum {
@@ -41,6 +44,7 @@ AxisymmetricSolver::AxisymmetricSolver(AxisymmetricMesh mesh, std::shared_ptr<co
     const TriangleGeometry g = triangle_geometry(gather(mesh_.nodes, mesh_.triangles[t]));
     assert(g.area > 0.0 && "triangles must be counter-clockwise in (r, z)");
     initial_areas_.push_back(g.area);
+    triangle_masses_.push_back(settings_.density * g.volume());
   }
 }
 
@@ -148,8 +152,7 @@ void AxisymmetricSolver::compute_forces_and_masses() {
 }
 
 void AxisymmetricSolver::update_velocities() {
-  double unbalanced = 0.0;
-  double applied = 0.0;
+  unbalanced_force_ratio_ = measure_unbalanced_force_ratio();
   for (Index n = 0; n < mesh_.nodes.size(); ++n) {
     for (Eigen::Index a = 0; a < 2; ++a) {
       if (prescribed_[n][static_cast<std::size_t>(a)]) {
@@ -157,20 +160,114 @@ void AxisymmetricSolver::update_velocities() {
         continue;
       }
       const double force = external_forces_[n][a] - internal_forces_[n][a];
-      unbalanced += std::abs(force);
-      applied += std::abs(internal_forces_[n][a]) + std::abs(external_forces_[n][a]);
       // Local damping (Cundall 1987): F − α|F| sgn(v), v of the previous half step.
       const double damped = force - settings_.damping * std::abs(force) * sign(velocities_[n][a]);
       velocities_[n][a] += damped / masses_[n];
     }
   }
-  unbalanced_force_ratio_ = applied > 0.0 ? unbalanced / applied : 0.0;
+}
+
+double AxisymmetricSolver::measure_unbalanced_force_ratio() const {
+  double unbalanced = 0.0;
+  double applied = 0.0;
+  for (Index n = 0; n < mesh_.nodes.size(); ++n) {
+    for (Eigen::Index a = 0; a < 2; ++a) {
+      if (prescribed_[n][static_cast<std::size_t>(a)]) continue;
+      unbalanced += std::abs(external_forces_[n][a] - internal_forces_[n][a]);
+      applied += std::abs(internal_forces_[n][a]) + std::abs(external_forces_[n][a]);
+    }
+  }
+  return applied > 0.0 ? unbalanced / applied : 0.0;
 }
 
 Point AxisymmetricSolver::internal_force_sum(std::span<const Index> nodes) const {
   Point sum = Point::Zero();
   for (const Index n : nodes) sum += internal_forces_[n];
   return sum;
+}
+
+double AxisymmetricSolver::total_mass() const {
+  double sum = 0.0;
+  for (const double m : triangle_masses_) sum += m;
+  return sum;
+}
+
+RemeshReport AxisymmetricSolver::remesh() {
+  RemeshReport report;
+  report.triangles_before = mesh_.triangles.size();
+  report.mass_before = total_mass();
+  const Index node_count = mesh_.nodes.size();
+  const std::vector<Triangle>& old_triangles = mesh_.triangles;
+  std::vector<Triangle> triangles = delaunay_retriangulation(mesh_.nodes, boundary_edges(old_triangles));
+
+  // The fields recovered at the nodes from the old triangles (volume-weighted
+  // means), one component at a time: the 6 stress components, the model's
+  // history and the density (docs/continuum_pile.md §5).
+  std::vector<double> old_volumes;
+  for (const Triangle& t : old_triangles) old_volumes.push_back(triangle_geometry(gather(mesh_.nodes, t)).volume());
+  const std::size_t state_size = model_->state_size();
+  const std::size_t components = 6 + state_size + 1;
+  std::vector<std::vector<double>> nodal(components);
+  std::vector<double> old_values(old_triangles.size());
+  for (std::size_t c = 0; c < components; ++c) {
+    for (Index t = 0; t < old_triangles.size(); ++t) {
+      if (c < 6) old_values[t] = stresses_[t].components()[c];
+      else if (c < 6 + state_size) old_values[t] = model_state_[t * state_size + (c - 6)];
+      else old_values[t] = triangle_masses_[t] / old_volumes[t];
+    }
+    nodal[c] = nodal_means(old_triangles, node_count, old_volumes, old_values);
+  }
+
+  std::map<Triangle, Index> old_index;
+  for (Index t = 0; t < old_triangles.size(); ++t) {
+    Triangle key = old_triangles[t];
+    std::sort(key.begin(), key.end());
+    old_index.emplace(key, t);
+  }
+  std::vector<Stress> stresses;
+  std::vector<double> model_state;
+  std::vector<double> areas;
+  std::vector<double> masses;
+  for (const Triangle& tri : triangles) {
+    const TriangleGeometry g = triangle_geometry(gather(mesh_.nodes, tri));
+    areas.push_back(g.area);
+    Triangle key = tri;
+    std::sort(key.begin(), key.end());
+    if (const auto kept = old_index.find(key); kept != old_index.end()) {
+      // A triangle of the old mesh keeps its own state, undiffused.
+      const Index old = kept->second;
+      stresses.push_back(stresses_[old]);
+      const auto state = std::span(model_state_).subspan(old * state_size, state_size);
+      model_state.insert(model_state.end(), state.begin(), state.end());
+      masses.push_back(triangle_masses_[old]);
+      continue;
+    }
+    ++report.triangles_changed;
+    // A new triangle: the recovered nodal fields interpolated at its centroid.
+    const auto at_centroid = [&](std::size_t c) {
+      return (nodal[c][tri[0]] + nodal[c][tri[1]] + nodal[c][tri[2]]) / 3.0;
+    };
+    stresses.push_back({at_centroid(0), at_centroid(1), at_centroid(2), at_centroid(3), at_centroid(4), at_centroid(5)});
+    for (std::size_t s = 0; s < state_size; ++s) model_state.push_back(at_centroid(6 + s));
+    masses.push_back(at_centroid(6 + state_size) * g.volume());
+  }
+  double transferred = 0.0;
+  for (const double m : masses) transferred += m;
+  report.mass_transferred = transferred;
+  // The same nodes and boundary enclose the same volume, so the transferred
+  // densities miss the mass only by the smoothing of the density; one factor
+  // restores it exactly.
+  for (double& m : masses) m *= report.mass_before / transferred;
+
+  mesh_.triangles = std::move(triangles);
+  stresses_ = std::move(stresses);
+  model_state_ = std::move(model_state);
+  initial_areas_ = std::move(areas);
+  triangle_masses_ = std::move(masses);
+  report.triangles_after = mesh_.triangles.size();
+  compute_forces_and_masses();
+  unbalanced_force_ratio_ = measure_unbalanced_force_ratio();
+  return report;
 }
 
 double AxisymmetricSolver::smallest_area_ratio() const {

@@ -6,13 +6,11 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <memory>
 
 #include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/constitutive/mohr_coulomb_model.hpp"
-#include "dfc/continuum/axisymmetric_solver.hpp"
-#include "dfc/continuum/strip_mesh.hpp"
+#include "cavity_expansion.hpp"
 #include "dfc/continuum/tresca_cavity_closed_form.hpp"
 
 namespace dfc::continuum {
@@ -26,63 +24,24 @@ constexpr double kInitialRadius = 1.0;
 constexpr double kOuterRadius = 100.0;
 const constitutive::ElasticModuli kModuli = constitutive::moduli_from_young_poisson(2.0 * 50.0 * kStrength * 1.49, 0.49);
 
-struct CavityRun {
-  std::vector<double> radius_ratios;  ///< a/a₀ at the checkpoints
-  std::vector<double> pressures;      ///< Pa, from the reaction of the cavity wall
-  std::vector<double> unbalanced;     ///< unbalanced-force ratio at the checkpoints
-  double smallest_area_ratio = 0.0;
-};
-
-struct Loading {
-  Index expansion_steps = 0;  ///< steps to move the wall from a₀ to the last checkpoint
-  Index settling_steps = 0;   ///< steps with the wall held at the end, before the last reading
-  std::vector<double> checkpoints;  ///< a/a₀ where the pressure is read (the last one after settling)
-};
-
 // 60 radial divisions graded by 1.075 from a₀ to b = 100 a₀ (the first ring
 // 0.1 a₀ wide, 0.033 a₀ at a = 3a₀), one layer 0.1 a₀ high: 120 triangles. The
 // cavity wall's elements stay well shaped up to a/a₀ = 3 (aspect ratio 3 at
 // the end), so no remeshing is needed for this test.
-CavityRun expand(std::shared_ptr<const constitutive::ConstitutiveModel> model, const SolverSettings& settings, const Loading& loading) {
-  StripMeshSpec spec;
+CavityMeshSpec strip() {
+  CavityMeshSpec spec;
   spec.inner_radius = kInitialRadius;
   spec.outer_radius = kOuterRadius;
-  spec.height = 0.1;
   spec.radial_divisions = 60;
-  spec.vertical_divisions = 1;
   spec.radial_ratio = 1.075;
-  AxisymmetricSolver solver(strip_mesh(spec), std::move(model), Stress::isotropic(-kInSitu), settings);
-  const AxisymmetricMesh& mesh = solver.mesh();
-  // Plane strain along the axis: both faces on rollers.
-  solver.prescribe_velocity(mesh.node_group("bottom"), Axis::z, 0.0);
-  solver.prescribe_velocity(mesh.node_group("top"), Axis::z, 0.0);
-  solver.apply_pressure("outer", kInSitu);
-  const std::vector<Index>& wall = mesh.node_group("inner");
-  const double final_radius = loading.checkpoints.back() * kInitialRadius;
-  solver.prescribe_velocity(wall, Axis::r, (final_radius - kInitialRadius) / double(loading.expansion_steps));
+  spec.tangential_divisions = 1;
+  spec.strip_height = 0.1;
+  return spec;
+}
 
-  CavityRun run;
-  const auto read = [&] {
-    const double a = mesh.nodes[wall.front()].x();
-    const double height = mesh.nodes[wall.back()].y() - mesh.nodes[wall.front()].y();
-    run.radius_ratios.push_back(a / kInitialRadius);
-    run.pressures.push_back(solver.internal_force_sum(wall).x() / (2.0 * std::numbers::pi * a * height));
-    run.unbalanced.push_back(solver.unbalanced_force_ratio());
-  };
-  std::size_t next = 0;
-  for (Index s = 0; s < loading.expansion_steps; ++s) {
-    solver.step();
-    const double a = mesh.nodes[wall.front()].x();
-    if (next + 1 < loading.checkpoints.size() && a >= loading.checkpoints[next] * kInitialRadius - 1e-12) {
-      read();
-      ++next;
-    }
-  }
-  solver.prescribe_velocity(wall, Axis::r, 0.0);
-  for (Index s = 0; s < loading.settling_steps; ++s) solver.step();
-  read();
-  run.smallest_area_ratio = solver.smallest_area_ratio();
-  return run;
+test::CavityRun expand(std::shared_ptr<const constitutive::ConstitutiveModel> model, const SolverSettings& settings,
+                       const test::Loading& loading) {
+  return test::expand_cavity(test::CavityShape::cylindrical, strip(), std::move(model), kInSitu, settings, loading);
 }
 
 TrescaCavity closed_form_problem() {
@@ -95,7 +54,7 @@ TEST(CylindricalCavity, TrescaPressureFollowsTheLargeStrainClosedFormToThreeTime
   // 300 000 steps (the wall moves 6.7e-6 a₀ per step): halving the rate
   // halves the error (+0.60 % → +0.29 % at a/a₀ = 3), so what remains is the
   // inertia of the pseudo-dynamic loading, first order in its rate.
-  const CavityRun run =
+  const test::CavityRun run =
       expand(std::make_shared<constitutive::MohrCoulombModel>(kModuli, tresca), {}, {300000, 0, {1.5, 2.0, 2.5, 3.0}});
   const TrescaCavity problem = closed_form_problem();
   ASSERT_EQ(run.pressures.size(), 4u);
@@ -119,10 +78,10 @@ TEST(CylindricalCavity, NearlyIncompressibleElasticWallPressureIsLames) {
   const double poisson = 0.499;
   const constitutive::ElasticModuli moduli = constitutive::moduli_from_young_poisson(2.0 * 1e7 * (1.0 + poisson), poisson);
   const auto model = std::make_shared<constitutive::ElasticModel>(moduli);
-  const Loading loading{20000, 100000, {1.001}};
+  const test::Loading loading{20000, 100000, {1.001}};
   const double strain = 1e-3;
   const double lame = kInSitu + 2.0 * moduli.shear * strain * (1.0 - 1.0 / (kOuterRadius * kOuterRadius));
-  const CavityRun averaged = expand(model, {}, loading);
+  const test::CavityRun averaged = expand(model, {}, loading);
   const double error = (averaged.pressures.back() - lame) / (lame - kInSitu);
   std::printf("elastic nu = 0.499: wall pressure change error %+.3f %% (unbalanced %.1e)\n", 100.0 * error,
               averaged.unbalanced.back());

@@ -28,6 +28,21 @@ struct SolverSettings {
   /// increment (docs/continuum_pile.md §3). Off only to show the locking it
   /// removes (tests/continuum/).
   bool average_volumetric_strain = true;
+  /// Density at the start, kg/m³: each triangle's mass ρ V₀ is kept (mass
+  /// balance of an updated-Lagrangian element) and carried across remeshes.
+  double density = 1000.0;
+};
+
+/// What a remesh did (docs/continuum_pile.md §4–§5).
+struct RemeshReport {
+  Index triangles_before = 0;
+  Index triangles_after = 0;
+  /// New triangles that were not triangles of the old mesh.
+  Index triangles_changed = 0;
+  double mass_before = 0.0;  ///< kg
+  /// Σ ρ V of the new triangles with the transferred densities, before the
+  /// correction that restores mass_before exactly, kg.
+  double mass_transferred = 0.0;
 };
 
 enum class Axis { r = 0, z = 1 };
@@ -53,16 +68,28 @@ class AxisymmetricSolver {
   /// nodes whose motion is prescribed, the force the body resists it with.
   [[nodiscard]] Point internal_force_sum(std::span<const Index> nodes) const;
   /// Mean unbalanced force magnitude of the free components over the mean
-  /// magnitude of the internal and applied forces (theory/fdm.md §1.11).
+  /// magnitude of the internal and applied forces (theory/fdm.md §1.11), of
+  /// the last step or, after a remesh, of the new mesh.
   [[nodiscard]] double unbalanced_force_ratio() const { return unbalanced_force_ratio_; }
-  /// The smallest triangle area over its initial value (detects inversion).
+  /// The smallest triangle area over its value when the triangle was created (detects inversion).
   [[nodiscard]] double smallest_area_ratio() const;
   [[nodiscard]] long steps_taken() const { return steps_; }
+  /// Σ of the triangles' masses, kg.
+  [[nodiscard]] double total_mass() const;
+
+  /// Re-triangulates the current nodes (constrained Delaunay, the boundary
+  /// kept). A triangle that was already there keeps its state; a new one takes
+  /// the stress, history and density recovered at the nodes from the old
+  /// triangles (volume-weighted means) and interpolated at its centroid; the
+  /// masses are then scaled so that the total is unchanged. Nodes, velocities
+  /// and boundary conditions are untouched.
+  RemeshReport remesh();
 
  private:
   void move_and_update_stresses();
   void compute_forces_and_masses();
   void update_velocities();
+  [[nodiscard]] double measure_unbalanced_force_ratio() const;
 
   AxisymmetricMesh mesh_;
   std::shared_ptr<const constitutive::ConstitutiveModel> model_;
@@ -73,7 +100,8 @@ class AxisymmetricSolver {
   std::vector<double> masses_;
   std::vector<Stress> stresses_;
   std::vector<double> model_state_;
-  std::vector<double> initial_areas_;
+  std::vector<double> initial_areas_;  ///< area of each triangle when it was created
+  std::vector<double> triangle_masses_;  ///< kg
   /// Per node and axis: whether the velocity is prescribed, and its value.
   std::vector<std::array<bool, 2>> prescribed_;
   std::vector<Point> prescribed_velocities_;
