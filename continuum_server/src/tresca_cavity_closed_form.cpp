@@ -7,15 +7,22 @@ namespace dfc::continuum {
 
 namespace {
 
-// Mass balance of the plastic ring (docs/continuum_pile.md §7): with
-// J = (r/c)^β, β = 2s_u/(K + G/3), r dr = J r₀ dr₀ integrates to
-// c₀² − a₀² = 2c^β (c^{2−β} − a^{2−β})/(2 − β), c₀ = c − u(c), u(c) = s_u c/(2G)
-// (the Lamé displacement at first yield). Positive when c is too small.
+bool is_spherical(const TrescaCavity& k) { return k.geometry == CavityGeometry::spherical; }
+
+// Mass balance of the plastic zone (docs/continuum_pile.md §7), in d = 2
+// (cylinder) or 3 (sphere) dimensions: with J = (r/c)^β, r^{d−1} dr =
+// J r₀^{d−1} dr₀ integrates to (c₀^d − a₀^d)/d = c^β (c^{d−β} − a^{d−β})/(d − β),
+// c₀ = c − u(c), u(c) the Lamé displacement at first yield (s_u c/(2G) for the
+// cylinder, s_u c/(3G) for the sphere), β = 2s_u/(K + G/3) (cylinder, plane
+// strain) or 4s_u/K (sphere). Positive when c is too small.
 double mass_balance(const TrescaCavity& k, double a, double c) {
-  const double beta = 2.0 * k.undrained_strength / (k.bulk_modulus + k.shear_modulus / 3.0);
-  const double c0 = c * (1.0 - k.undrained_strength / (2.0 * k.shear_modulus));
-  const double swept = 2.0 * std::pow(c, beta) * (std::pow(c, 2.0 - beta) - std::pow(a, 2.0 - beta)) / (2.0 - beta);
-  return c0 * c0 - k.initial_radius * k.initial_radius - swept;
+  const bool sphere = is_spherical(k);
+  const double d = sphere ? 3.0 : 2.0;
+  const double beta = sphere ? 4.0 * k.undrained_strength / k.bulk_modulus
+                             : 2.0 * k.undrained_strength / (k.bulk_modulus + k.shear_modulus / 3.0);
+  const double c0 = c * (1.0 - k.undrained_strength / (d * k.shear_modulus));
+  const double swept = std::pow(c, beta) * (std::pow(c, d - beta) - std::pow(a, d - beta)) / (d - beta);
+  return (std::pow(c0, d) - std::pow(k.initial_radius, d)) / d - swept;
 }
 
 }  // namespace
@@ -34,14 +41,18 @@ double plastic_radius(const TrescaCavity& k, double a) {
 
 double cavity_pressure(const TrescaCavity& k, double a) {
   const double c = plastic_radius(k, a);
-  // σ_r(c) = σ₀ + s_u (1 − c²/b²): the elastic annulus c … b under the pressure
-  // σ₀ at b yields at c when the Lamé stress difference reaches 2s_u.
-  const double at_plastic_boundary = k.undrained_strength * (1.0 - (c * c) / (k.outer_radius * k.outer_radius));
-  return k.in_situ_pressure + at_plastic_boundary + 2.0 * k.undrained_strength * std::log(c / a);
+  const double s = k.undrained_strength;
+  const double outer = c / k.outer_radius;
+  // σ_r(c): the elastic shell c … b under the pressure σ₀ at b yields at c
+  // when the Lamé stress difference reaches 2s_u; then the plastic zone's
+  // equilibrium dσ_r/dr + m (σ_r − σ_θ)/r = 0 (m = 1 cylinder, 2 sphere).
+  if (is_spherical(k)) return k.in_situ_pressure + 4.0 / 3.0 * s * (1.0 - outer * outer * outer) + 4.0 * s * std::log(c / a);
+  return k.in_situ_pressure + s * (1.0 - outer * outer) + 2.0 * s * std::log(c / a);
 }
 
 double limit_pressure(const TrescaCavity& k) {
-  return k.in_situ_pressure + k.undrained_strength * (1.0 + std::log(k.shear_modulus / k.undrained_strength));
+  const double cylinder = k.undrained_strength * (1.0 + std::log(k.shear_modulus / k.undrained_strength));
+  return k.in_situ_pressure + (is_spherical(k) ? 4.0 / 3.0 : 1.0) * cylinder;
 }
 
 }  // namespace dfc::continuum

@@ -45,7 +45,7 @@ test::CavityRun expand(std::shared_ptr<const constitutive::ConstitutiveModel> mo
 }
 
 TrescaCavity closed_form_problem() {
-  return {kModuli.shear, kModuli.bulk, kStrength, kInSitu, kInitialRadius, kOuterRadius};
+  return {CavityGeometry::cylindrical, kModuli.shear, kModuli.bulk, kStrength, kInSitu, kInitialRadius, kOuterRadius};
 }
 
 TEST(CylindricalCavity, TrescaPressureFollowsTheLargeStrainClosedFormToThreeTimesTheInitialRadius) {
