@@ -5,9 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <map>
+#include <set>
 
 #include "dfc/continuum/boundary_edges.hpp"
+#include "dfc/continuum/containing_triangles.hpp"
 #include "dfc/continuum/delaunay_retriangulation.hpp"
 #include "dfc/continuum/nodal_average.hpp"
 
@@ -200,56 +201,57 @@ RemeshReport AxisymmetricSolver::remesh() {
   const std::vector<Triangle>& old_triangles = mesh_.triangles;
   std::vector<Triangle> triangles = delaunay_retriangulation(mesh_.nodes, boundary_edges(old_triangles));
 
-  // The fields recovered at the nodes from the old triangles (volume-weighted
-  // means), one component at a time: the 6 stress components, the model's
-  // history and the density (docs/continuum_pile.md §5).
+  // Per component (the 6 stress components, the model's history, the
+  // density) the old triangles' values and the field recovered from them at
+  // the nodes (volume-weighted means; docs/continuum_pile.md §5).
   std::vector<double> old_volumes;
   for (const Triangle& t : old_triangles) old_volumes.push_back(triangle_geometry(gather(mesh_.nodes, t)).volume());
   const std::size_t state_size = model_->state_size();
   const std::size_t components = 6 + state_size + 1;
+  std::vector<std::vector<double>> old_values(components, std::vector<double>(old_triangles.size()));
   std::vector<std::vector<double>> nodal(components);
-  std::vector<double> old_values(old_triangles.size());
   for (std::size_t c = 0; c < components; ++c) {
     for (Index t = 0; t < old_triangles.size(); ++t) {
-      if (c < 6) old_values[t] = stresses_[t].components()[c];
-      else if (c < 6 + state_size) old_values[t] = model_state_[t * state_size + (c - 6)];
-      else old_values[t] = triangle_masses_[t] / old_volumes[t];
+      if (c < 6) old_values[c][t] = stresses_[t].components()[c];
+      else if (c < 6 + state_size) old_values[c][t] = model_state_[t * state_size + (c - 6)];
+      else old_values[c][t] = triangle_masses_[t] / old_volumes[t];
     }
-    nodal[c] = nodal_means(old_triangles, node_count, old_volumes, old_values);
+    nodal[c] = nodal_means(old_triangles, node_count, old_volumes, old_values[c]);
   }
+  const auto recovered_at_centroid = [&](const Triangle& tri, std::size_t c) {
+    return (nodal[c][tri[0]] + nodal[c][tri[1]] + nodal[c][tri[2]]) / 3.0;
+  };
 
-  std::map<Triangle, Index> old_index;
-  for (Index t = 0; t < old_triangles.size(); ++t) {
-    Triangle key = old_triangles[t];
+  std::vector<Point> centroids;
+  for (const Triangle& tri : triangles) centroids.push_back((mesh_.nodes[tri[0]] + mesh_.nodes[tri[1]] + mesh_.nodes[tri[2]]) / 3.0);
+  const std::vector<Index> source = containing_triangles(mesh_.nodes, old_triangles, centroids);
+  std::set<Triangle> old_set;
+  for (Triangle key : old_triangles) {
     std::sort(key.begin(), key.end());
-    old_index.emplace(key, t);
+    old_set.insert(key);
   }
   std::vector<Stress> stresses;
   std::vector<double> model_state;
   std::vector<double> areas;
   std::vector<double> masses;
-  for (const Triangle& tri : triangles) {
+  for (Index t = 0; t < triangles.size(); ++t) {
+    const Triangle& tri = triangles[t];
     const TriangleGeometry g = triangle_geometry(gather(mesh_.nodes, tri));
     areas.push_back(g.area);
     Triangle key = tri;
     std::sort(key.begin(), key.end());
-    if (const auto kept = old_index.find(key); kept != old_index.end()) {
-      // A triangle of the old mesh keeps its own state, undiffused.
-      const Index old = kept->second;
-      stresses.push_back(stresses_[old]);
-      const auto state = std::span(model_state_).subspan(old * state_size, state_size);
-      model_state.insert(model_state.end(), state.begin(), state.end());
-      masses.push_back(triangle_masses_[old]);
-      continue;
-    }
-    ++report.triangles_changed;
-    // A new triangle: the recovered nodal fields interpolated at its centroid.
-    const auto at_centroid = [&](std::size_t c) {
-      return (nodal[c][tri[0]] + nodal[c][tri[1]] + nodal[c][tri[2]]) / 3.0;
+    if (!old_set.contains(key)) ++report.triangles_changed;
+    // The old triangle's own value, corrected by the change of the recovered
+    // field between its centroid and the new one: a kept triangle keeps its
+    // state exactly, a smooth field is carried to second order, and the
+    // state is not smeared over a nodal patch (docs/continuum_pile.md §5).
+    const Index old = source[t];
+    const auto transferred = [&](std::size_t c) {
+      return old_values[c][old] + recovered_at_centroid(tri, c) - recovered_at_centroid(old_triangles[old], c);
     };
-    stresses.push_back({at_centroid(0), at_centroid(1), at_centroid(2), at_centroid(3), at_centroid(4), at_centroid(5)});
-    for (std::size_t s = 0; s < state_size; ++s) model_state.push_back(at_centroid(6 + s));
-    masses.push_back(at_centroid(6 + state_size) * g.volume());
+    stresses.push_back({transferred(0), transferred(1), transferred(2), transferred(3), transferred(4), transferred(5)});
+    for (std::size_t s = 0; s < state_size; ++s) model_state.push_back(transferred(6 + s));
+    masses.push_back(transferred(6 + state_size) * g.volume());
   }
   double transferred = 0.0;
   for (const double m : masses) transferred += m;

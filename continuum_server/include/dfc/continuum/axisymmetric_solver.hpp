@@ -78,9 +78,10 @@ class AxisymmetricSolver {
   [[nodiscard]] double total_mass() const;
 
   /// Re-triangulates the current nodes (constrained Delaunay, the boundary
-  /// kept). A triangle that was already there keeps its state; a new one takes
-  /// the stress, history and density recovered at the nodes from the old
-  /// triangles (volume-weighted means) and interpolated at its centroid; the
+  /// kept). Each new triangle takes the stress, history and density of the
+  /// old triangle containing its centroid, corrected by the change of the
+  /// field recovered at the nodes (volume-weighted means) between the two
+  /// centroids, so a triangle that was already there keeps its state; the
   /// masses are then scaled so that the total is unchanged. Nodes, velocities
   /// and boundary conditions are untouched.
   RemeshReport remesh();
