@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <map>
 #include <set>
 
 #include "dfc/continuum/boundary_edges.hpp"
@@ -193,13 +194,17 @@ double AxisymmetricSolver::total_mass() const {
   return sum;
 }
 
-RemeshReport AxisymmetricSolver::remesh() {
+RemeshReport AxisymmetricSolver::remesh(double minimum_angle_deg) {
   RemeshReport report;
   report.triangles_before = mesh_.triangles.size();
   report.mass_before = total_mass();
   const Index node_count = mesh_.nodes.size();
   const std::vector<Triangle>& old_triangles = mesh_.triangles;
-  std::vector<Triangle> triangles = delaunay_retriangulation(mesh_.nodes, boundary_edges(old_triangles));
+  const std::vector<Edge> boundary = boundary_edges(old_triangles);
+  Retriangulation retriangulation = delaunay_retriangulation(mesh_.nodes, boundary, minimum_angle_deg);
+  const std::vector<Interpolation> added_from = add_nodes(retriangulation, boundary);
+  report.nodes_added = retriangulation.added_nodes.size();
+  std::vector<Triangle> triangles = std::move(retriangulation.triangles);
 
   // Per component (the 6 stress components, the model's history, the
   // density) the old triangles' values and the field recovered from them at
@@ -217,6 +222,11 @@ RemeshReport AxisymmetricSolver::remesh() {
       else old_values[c][t] = triangle_masses_[t] / old_volumes[t];
     }
     nodal[c] = nodal_means(old_triangles, node_count, old_volumes, old_values[c]);
+    // At the added nodes: the recovered field interpolated in the old mesh.
+    for (const Interpolation& from : added_from) {
+      const Triangle& host = old_triangles[from.triangle];
+      nodal[c].push_back(from.weights[0] * nodal[c][host[0]] + from.weights[1] * nodal[c][host[1]] + from.weights[2] * nodal[c][host[2]]);
+    }
   }
   const auto recovered_at_centroid = [&](const Triangle& tri, std::size_t c) {
     return (nodal[c][tri[0]] + nodal[c][tri[1]] + nodal[c][tri[2]]) / 3.0;
@@ -270,6 +280,74 @@ RemeshReport AxisymmetricSolver::remesh() {
   compute_forces_and_masses();
   unbalanced_force_ratio_ = measure_unbalanced_force_ratio();
   return report;
+}
+
+std::vector<AxisymmetricSolver::Interpolation> AxisymmetricSolver::add_nodes(const Retriangulation& retriangulation,
+                                                                              std::span<const Edge> boundary) {
+  const Index first_added = mesh_.nodes.size();
+  const std::vector<Index> hosts = containing_triangles(mesh_.nodes, mesh_.triangles, retriangulation.added_nodes);
+  std::vector<Interpolation> interpolations;
+  // Added nodes on each split boundary edge, ordered from its first node.
+  std::map<Edge, std::vector<std::pair<double, Index>>> splits;
+  for (Index k = 0; k < retriangulation.added_nodes.size(); ++k) {
+    const Index node = first_added + k;
+    const Point& p = retriangulation.added_nodes[k];
+    // Velocity: the old mesh's linear field at the new node.
+    const Triangle& host = mesh_.triangles[hosts[k]];
+    const auto weights = barycentric_coordinates(p, mesh_.nodes[host[0]], mesh_.nodes[host[1]], mesh_.nodes[host[2]]);
+    interpolations.push_back({hosts[k], weights});
+    Point velocity = Point::Zero();
+    for (int i = 0; i < 3; ++i) velocity += weights[i] * velocities_[host[i]];
+    std::array<bool, 2> prescribed{false, false};
+    Point prescribed_velocity = Point::Zero();
+    const Index edge = retriangulation.boundary_edge_of_added[k];
+    if (edge != Retriangulation::kInterior) {
+      // A node on a boundary edge inherits what both ends share: a velocity
+      // component prescribed at both (interpolated), and their named groups.
+      const Index a = boundary[edge][0];
+      const Index b = boundary[edge][1];
+      const double along = (p - mesh_.nodes[a]).norm() / (mesh_.nodes[b] - mesh_.nodes[a]).norm();
+      for (std::size_t axis = 0; axis < 2; ++axis) {
+        if (!(prescribed_[a][axis] && prescribed_[b][axis])) continue;
+        const auto component = static_cast<Eigen::Index>(axis);
+        prescribed[axis] = true;
+        prescribed_velocity[component] =
+            (1.0 - along) * prescribed_velocities_[a][component] + along * prescribed_velocities_[b][component];
+        velocity[component] = prescribed_velocity[component];
+      }
+      for (auto& [name, group] : mesh_.node_groups)
+        if (std::find(group.begin(), group.end(), a) != group.end() && std::find(group.begin(), group.end(), b) != group.end())
+          group.push_back(node);
+      splits[boundary[edge]].emplace_back(along, node);
+    }
+    mesh_.nodes.push_back(p);
+    velocities_.push_back(velocity);
+    prescribed_.push_back(prescribed);
+    prescribed_velocities_.push_back(prescribed_velocity);
+  }
+  for (auto& [name, edges] : mesh_.edge_groups) {
+    std::vector<Edge> split_edges;
+    for (const Edge& e : edges) {
+      auto found = splits.find(e);
+      if (found == splits.end()) {
+        split_edges.push_back(e);
+        continue;
+      }
+      std::sort(found->second.begin(), found->second.end());
+      Index from = e[0];
+      for (const auto& [along, node] : found->second) {
+        split_edges.push_back({from, node});
+        from = node;
+      }
+      split_edges.push_back({from, e[1]});
+    }
+    edges = std::move(split_edges);
+  }
+  const Index nodes = mesh_.nodes.size();
+  masses_.resize(nodes, 0.0);
+  internal_forces_.resize(nodes, Point::Zero());
+  external_forces_.resize(nodes, Point::Zero());
+  return interpolations;
 }
 
 double AxisymmetricSolver::smallest_area_ratio() const {

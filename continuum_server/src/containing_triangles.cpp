@@ -5,16 +5,11 @@
 
 namespace dfc::continuum {
 
-namespace {
-
-/// Smallest barycentric coordinate of p in the triangle abc (≥ 0 inside).
-double smallest_barycentric(const Point& p, const Point& a, const Point& b, const Point& c) {
+std::array<double, 3> barycentric_coordinates(const Point& p, const Point& a, const Point& b, const Point& c) {
   const auto cross = [](const Point& u, const Point& v) { return u.x() * v.y() - u.y() * v.x(); };
   const double area = cross(b - a, c - a);
-  return std::min({cross(b - p, c - p) / area, cross(c - p, a - p) / area, cross(a - p, b - p) / area});
+  return {cross(b - p, c - p) / area, cross(c - p, a - p) / area, cross(a - p, b - p) / area};
 }
-
-}  // namespace
 
 std::vector<Index> containing_triangles(std::span<const Point> nodes, std::span<const Triangle> triangles,
                                         std::span<const Point> points) {
@@ -29,7 +24,8 @@ std::vector<Index> containing_triangles(std::span<const Point> nodes, std::span<
       const Point& a = nodes[triangles[t][0]];
       const Point& b = nodes[triangles[t][1]];
       const Point& c = nodes[triangles[t][2]];
-      const double inside = smallest_barycentric(p, a, b, c);
+      const std::array<double, 3> weights = barycentric_coordinates(p, a, b, c);
+      const double inside = std::min({weights[0], weights[1], weights[2]});
       if (inside > most_inside_value) most_inside_value = inside, most_inside = t;
       const double distance = (p - (a + b + c) / 3.0).squaredNorm();
       if (distance < nearest_distance) nearest_distance = distance, nearest = t;

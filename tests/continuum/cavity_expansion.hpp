@@ -46,9 +46,6 @@ class CavityExpansion {
       solver_.prescribe_velocity(mesh.node_group("top"), Axis::z, 0.0);
     }
     solver_.apply_pressure("outer", in_situ_pressure);
-    // The wall moves radially, so its nodes' directions are read once.
-    for (const Index n : mesh.node_group("inner"))
-      directions_.push_back(spherical_ ? Point(mesh.nodes[n].normalized()) : Point(1.0, 0.0));
   }
 
   /// Moves the wall to a/a₀ = `ratio` in `steps` steps, calling `at_step` after each.
@@ -74,17 +71,20 @@ class CavityExpansion {
   [[nodiscard]] double wall_pressure() const { return wall_force() / wall_area(); }
   /// The wall's normal reaction, N.
   [[nodiscard]] double wall_force() const {
-    const std::vector<Index>& wall = solver_.mesh().node_group("inner");
     double force = 0.0;
-    for (std::size_t k = 0; k < wall.size(); ++k) {
-      const Index node[] = {wall[k]};
-      force += solver_.internal_force_sum(node).dot(directions_[k]);
+    for (const Index n : solver_.mesh().node_group("inner")) {
+      const Index node[] = {n};
+      force += solver_.internal_force_sum(node).dot(outward(n));
     }
     return force;
   }
   [[nodiscard]] AxisymmetricSolver& solver() { return solver_; }
 
  private:
+  /// The wall moves radially: from the axis (cylinder) or the centre (sphere).
+  [[nodiscard]] Point outward(Index node) const {
+    return spherical_ ? Point(solver_.mesh().nodes[node].normalized()) : Point(1.0, 0.0);
+  }
   [[nodiscard]] double wall_radius() const {
     const Point& p = solver_.mesh().nodes[solver_.mesh().node_group("inner").front()];
     return spherical_ ? p.norm() : p.x();
@@ -97,18 +97,17 @@ class CavityExpansion {
     return 2.0 * std::numbers::pi * a * (spherical_ ? a : height);
   }
   void move_wall(double speed) {
-    const std::vector<Index>& wall = solver_.mesh().node_group("inner");
-    for (std::size_t k = 0; k < wall.size(); ++k) {
-      const Index node[] = {wall[k]};
-      solver_.prescribe_velocity(node, Axis::r, speed * directions_[k].x());
-      solver_.prescribe_velocity(node, Axis::z, speed * directions_[k].y());
+    for (const Index n : solver_.mesh().node_group("inner")) {
+      const Index node[] = {n};
+      const Point direction = outward(n);
+      solver_.prescribe_velocity(node, Axis::r, speed * direction.x());
+      solver_.prescribe_velocity(node, Axis::z, speed * direction.y());
     }
   }
 
   bool spherical_;
   double initial_radius_;
   AxisymmetricSolver solver_;
-  std::vector<Point> directions_;
 };
 
 struct Loading {

@@ -78,5 +78,33 @@ TEST(SphericalCavity, TrescaPressureFollowsTheLargeStrainClosedFormToThreeTimesT
   std::printf("smallest area ratio %.3f, limit pressure (infinite medium) %.1f kPa\n", run.smallest_area_ratio, limit_pressure(problem) / 1e3);
 }
 
+// The same expansion with the mesh refined at a/a₀ = 2 (CGAL Delaunay
+// refinement to 25°, docs/continuum_pile.md §4): the pressure stays on the
+// closed form after the remesh.
+TEST(SphericalCavity, TrescaPressureStaysOnTheClosedFormAfterARefiningRemesh) {
+  const double strength = 100e3;
+  const constitutive::ElasticModuli moduli = constitutive::moduli_from_young_poisson(2.0 * 50.0 * strength * 1.3, 0.3);
+  const auto model = std::make_shared<constitutive::MohrCoulombModel>(moduli, constitutive::MohrCoulombStrength{strength, 0.0, 0.0, 1e12});
+  const CavityMeshSpec spec = test::spherical_test_mesh();
+  const TrescaCavity problem{CavityGeometry::spherical, moduli.shear, moduli.bulk, strength, kInSitu, spec.inner_radius, spec.outer_radius};
+  test::CavityExpansion cavity(test::CavityShape::spherical, spec, model, kInSitu, {});
+  cavity.expand_to(2.0, 15000);
+  const double before = cavity.wall_pressure();
+  const RemeshReport report = cavity.solver().remesh(25.0);
+  cavity.expand_to(2.5, 7500);
+  const double at_2_5 = cavity.wall_pressure();
+  cavity.expand_to(3.0, 7500);
+  const double at_3 = cavity.wall_pressure();
+  const double exact_2 = cavity_pressure(problem, 2.0), exact_2_5 = cavity_pressure(problem, 2.5), exact_3 = cavity_pressure(problem, 3.0);
+  std::printf("refined at a/a0 = 2: %zu -> %zu triangles, %zu nodes added, smallest area ratio at 3: %.3f\n"
+              "  p(2) %+.2f %%, p(2.5) %+.2f %%, p(3) %+.2f %% from the closed form\n",
+              report.triangles_before, report.triangles_after, report.nodes_added, cavity.solver().smallest_area_ratio(),
+              100.0 * (before - exact_2) / exact_2, 100.0 * (at_2_5 - exact_2_5) / exact_2_5, 100.0 * (at_3 - exact_3) / exact_3);
+  EXPECT_GT(report.nodes_added, 0u);  // the test means something only if the mesh was refined
+  // 2 %: the tolerance for the cavity pressure.
+  EXPECT_NEAR(at_2_5, exact_2_5, 0.02 * exact_2_5);
+  EXPECT_NEAR(at_3, exact_3, 0.02 * exact_3);
+}
+
 }  // namespace
 }  // namespace dfc::continuum

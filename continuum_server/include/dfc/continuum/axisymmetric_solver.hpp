@@ -12,6 +12,7 @@
 
 #include "dfc/constitutive/constitutive_model.hpp"
 #include "dfc/continuum/axisymmetric_mesh.hpp"
+#include "dfc/continuum/delaunay_retriangulation.hpp"
 #include "dfc/continuum/triangle_kinematics.hpp"
 
 namespace dfc::continuum {
@@ -39,6 +40,8 @@ struct RemeshReport {
   Index triangles_after = 0;
   /// New triangles that were not triangles of the old mesh.
   Index triangles_changed = 0;
+  /// Nodes added by the Delaunay refinement.
+  Index nodes_added = 0;
   double mass_before = 0.0;  ///< kg
   /// Σ ρ V of the new triangles with the transferred densities, before the
   /// correction that restores mass_before exactly, kg.
@@ -83,13 +86,25 @@ class AxisymmetricSolver {
   /// field recovered at the nodes (volume-weighted means) between the two
   /// centroids, so a triangle that was already there keeps its state; the
   /// masses are then scaled so that the total is unchanged. Nodes, velocities
-  /// and boundary conditions are untouched.
-  RemeshReport remesh();
+  /// and boundary conditions are untouched. With `minimum_angle_deg` > 0 the
+  /// triangulation is refined until no angle is smaller (CGAL Delaunay
+  /// refinement); an added node takes the old mesh's velocity field, and one
+  /// on a boundary edge the velocity components prescribed at both its ends
+  /// (interpolated) and the named groups of both, its edge being split in
+  /// the edge groups.
+  RemeshReport remesh(double minimum_angle_deg = 0.0);
 
  private:
   void move_and_update_stresses();
   void compute_forces_and_masses();
   void update_velocities();
+  /// Where an added node lies in the old mesh: its triangle and barycentric weights.
+  struct Interpolation {
+    Index triangle = 0;
+    std::array<double, 3> weights{};
+  };
+  /// Appends the refinement's nodes with their nodal fields, conditions and groups.
+  std::vector<Interpolation> add_nodes(const Retriangulation& retriangulation, std::span<const Edge> boundary);
   [[nodiscard]] double measure_unbalanced_force_ratio() const;
 
   AxisymmetricMesh mesh_;
