@@ -350,6 +350,12 @@ std::vector<AxisymmetricSolver::Interpolation> AxisymmetricSolver::add_nodes(con
   return interpolations;
 }
 
+double AxisymmetricSolver::smallest_angle_deg() const {
+  double smallest = 180.0;
+  for (const Triangle& t : mesh_.triangles) smallest = std::min(smallest, continuum::smallest_angle_deg(gather(mesh_.nodes, t)));
+  return smallest;
+}
+
 double AxisymmetricSolver::smallest_area_ratio() const {
   double smallest = std::numeric_limits<double>::infinity();
   for (Index t = 0; t < mesh_.triangles.size(); ++t)

@@ -24,6 +24,17 @@ TriangleGeometry triangle_geometry(const NodalVectors& p) {
   return g;
 }
 
+double smallest_angle_deg(const NodalVectors& p) {
+  double smallest = 180.0;
+  for (int i = 0; i < 3; ++i) {
+    const Point u = p[(i + 1) % 3] - p[i];
+    const Point v = p[(i + 2) % 3] - p[i];
+    const double cosine = std::clamp(u.dot(v) / (u.norm() * v.norm()), -1.0, 1.0);
+    smallest = std::min(smallest, std::acos(cosine) * 180.0 / std::numbers::pi);
+  }
+  return smallest;
+}
+
 VelocityGradient velocity_gradient(const TriangleGeometry& g, const NodalVectors& v) {
   VelocityGradient l;
   double mean_radial_velocity = 0.0;

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <numbers>
 #include <vector>
 
 #include "cavity_expansion.hpp"
@@ -70,12 +69,9 @@ TEST(DelaunayRetriangulation, RefinementReachesTheAngleBoundWithoutMovingTheBoun
   double area = 0.0;
   double smallest_angle = 180.0;
   for (const Triangle& t : result.triangles) {
-    area += triangle_geometry({all[t[0]], all[t[1]], all[t[2]]}).area;
-    for (int i = 0; i < 3; ++i) {
-      const Point u = all[t[(i + 1) % 3]] - all[t[i]];
-      const Point v = all[t[(i + 2) % 3]] - all[t[i]];
-      smallest_angle = std::min(smallest_angle, std::acos(u.dot(v) / (u.norm() * v.norm())) * 180.0 / std::numbers::pi);
-    }
+    const NodalVectors corners{all[t[0]], all[t[1]], all[t[2]]};
+    area += triangle_geometry(corners).area;
+    smallest_angle = std::min(smallest_angle, smallest_angle_deg(corners));
   }
   EXPECT_NEAR(area, 8.0, 1e-12);  // the boundary has not moved
   EXPECT_GE(smallest_angle, 25.0 - 1e-9);

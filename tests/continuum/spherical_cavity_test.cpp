@@ -90,17 +90,21 @@ TEST(SphericalCavity, TrescaPressureStaysOnTheClosedFormAfterARefiningRemesh) {
   test::CavityExpansion cavity(test::CavityShape::spherical, spec, model, kInSitu, {});
   cavity.expand_to(2.0, 15000);
   const double before = cavity.wall_pressure();
+  const double angle_before = cavity.solver().smallest_angle_deg();
   const RemeshReport report = cavity.solver().remesh(25.0);
+  const double angle_after = cavity.solver().smallest_angle_deg();
   cavity.expand_to(2.5, 7500);
   const double at_2_5 = cavity.wall_pressure();
   cavity.expand_to(3.0, 7500);
   const double at_3 = cavity.wall_pressure();
   const double exact_2 = cavity_pressure(problem, 2.0), exact_2_5 = cavity_pressure(problem, 2.5), exact_3 = cavity_pressure(problem, 3.0);
-  std::printf("refined at a/a0 = 2: %zu -> %zu triangles, %zu nodes added, smallest area ratio at 3: %.3f\n"
+  std::printf("refined at a/a0 = 2: smallest angle %.1f -> %.1f deg, %zu -> %zu triangles, %zu nodes added, smallest area ratio at 3: %.3f\n"
               "  p(2) %+.2f %%, p(2.5) %+.2f %%, p(3) %+.2f %% from the closed form\n",
-              report.triangles_before, report.triangles_after, report.nodes_added, cavity.solver().smallest_area_ratio(),
+              angle_before, angle_after, report.triangles_before, report.triangles_after, report.nodes_added, cavity.solver().smallest_area_ratio(),
               100.0 * (before - exact_2) / exact_2, 100.0 * (at_2_5 - exact_2_5) / exact_2_5, 100.0 * (at_3 - exact_3) / exact_3);
   EXPECT_GT(report.nodes_added, 0u);  // the test means something only if the mesh was refined
+  EXPECT_LT(angle_before, 25.0);
+  EXPECT_GE(angle_after, 25.0 - 1e-9);
   // 2 %: the tolerance for the cavity pressure.
   EXPECT_NEAR(at_2_5, exact_2_5, 0.02 * exact_2_5);
   EXPECT_NEAR(at_3, exact_3, 0.02 * exact_3);

@@ -62,6 +62,11 @@ TEST(TriangleKinematics, UniformStressForcesSumToTheHoopTerm) {
   EXPECT_NEAR(sum_z, 0.0, 1e-9 * p);
 }
 
+TEST(TriangleKinematics, SmallestAngleOfARightIsoscelesTriangleIs45Degrees) {
+  EXPECT_NEAR(smallest_angle_deg({Point(1, 0), Point(2, 0), Point(1, 1)}), 45.0, 1e-12);
+  EXPECT_NEAR(smallest_angle_deg({Point(1, 0), Point(2, 0), Point(1.5, 0.5 * std::sqrt(3.0))}), 60.0, 1e-12);
+}
+
 TEST(TriangleKinematics, StiffnessRowSumsArePositiveAndScaleWithTheModulus) {
   const TriangleGeometry g = triangle_geometry(kTriangle);
   const auto soft = stiffness_row_sums(g, 1e6, 5e5);

@@ -76,6 +76,8 @@ class AxisymmetricSolver {
   [[nodiscard]] double unbalanced_force_ratio() const { return unbalanced_force_ratio_; }
   /// The smallest triangle area over its value when the triangle was created (detects inversion).
   [[nodiscard]] double smallest_area_ratio() const;
+  /// The smallest angle of any triangle, degrees: when to remesh.
+  [[nodiscard]] double smallest_angle_deg() const;
   [[nodiscard]] long steps_taken() const { return steps_; }
   /// Σ of the triangles' masses, kg.
   [[nodiscard]] double total_mass() const;

@@ -30,6 +30,8 @@ struct TriangleGeometry {
 };
 
 [[nodiscard]] TriangleGeometry triangle_geometry(const NodalVectors& corners);
+/// The smallest interior angle, degrees: the shape measure of the remeshing (docs/continuum_pile.md §4).
+[[nodiscard]] double smallest_angle_deg(const NodalVectors& corners);
 
 /// ∇v in the r–z plane plus the hoop rate v_r / r at the centroid, 1/s.
 struct VelocityGradient {
