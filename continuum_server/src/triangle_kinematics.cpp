@@ -10,6 +10,10 @@ namespace dfc::continuum {
 
 double TriangleGeometry::volume() const { return 2.0 * std::numbers::pi * centroid_r * area; }
 
+NodalVectors gather(std::span<const Point> values, const Triangle& triangle) {
+  return {values[triangle[0]], values[triangle[1]], values[triangle[2]]};
+}
+
 TriangleGeometry triangle_geometry(const NodalVectors& p) {
   TriangleGeometry g;
   const double twice_area = (p[1].x() - p[0].x()) * (p[2].y() - p[0].y()) - (p[2].x() - p[0].x()) * (p[1].y() - p[0].y());

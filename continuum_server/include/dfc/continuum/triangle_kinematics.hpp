@@ -8,6 +8,7 @@
 // Tensor components in the models' SymTensor: xx = rr, yy = θθ, zz = zz,
 // zx = rz (tensor shear), xy = yz = 0 (axisymmetric, no torsion).
 #include <array>
+#include <span>
 
 #include <Eigen/Core>
 
@@ -29,6 +30,8 @@ struct TriangleGeometry {
   [[nodiscard]] double volume() const;
 };
 
+/// The values of a nodal field at a triangle's three nodes.
+[[nodiscard]] NodalVectors gather(std::span<const Point> values, const Triangle& triangle);
 [[nodiscard]] TriangleGeometry triangle_geometry(const NodalVectors& corners);
 /// The smallest interior angle, degrees: the shape measure of the remeshing (docs/continuum_pile.md §4).
 [[nodiscard]] double smallest_angle_deg(const NodalVectors& corners);
