@@ -8,8 +8,8 @@
 #include "dfc/common/sections/fdm_sections.hpp"
 #include "dfc/fdm/initial_stress.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
-#include "dfc/fdm/model_registry.hpp"
-#include "dfc/fdm/named_materials.hpp"
+#include "dfc/constitutive/model_registry.hpp"
+#include "dfc/constitutive/named_materials.hpp"
 
 namespace dfc::fdm {
 
@@ -97,10 +97,10 @@ Mesh read_mesh(ConfigReader cfg) {
 Material read_model_and_parameters(ConfigReader cfg) {
   if (!cfg.has("model")) cfg.fail("model", "missing: give \"model\" and its parameters, or a \"preset\" (fdm_server --help lists both)");
   const std::string keyword = cfg.string("model");
-  const ConstitutiveModelEntry* entry = find_constitutive_model(keyword);
+  const constitutive::ConstitutiveModelEntry* entry = constitutive::find_constitutive_model(keyword);
   if (entry == nullptr) {
     std::string known;
-    for (const auto& e : constitutive_models()) known += (known.empty() ? "\"" : ", \"") + std::string(e.keyword) + "\"";
+    for (const auto& e : constitutive::constitutive_models()) known += (known.empty() ? "\"" : ", \"") + std::string(e.keyword) + "\"";
     cfg.fail("model", "unknown constitutive model \"" + keyword + "\"; known models: " + known);
   }
   Material material;
@@ -125,13 +125,13 @@ Material read_material(const nlohmann::json& given) {
     return read_model_and_parameters(ConfigReader(given, "material", sections::fdm_material()));
   ConfigReader cfg(given, "material", sections::fdm_material());
   const std::string name = cfg.string("preset");
-  const NamedMaterial* preset = find_named_material(name);
+  const constitutive::NamedMaterial* preset = constitutive::find_named_material(name);
   if (preset == nullptr) {
     std::string known;
-    for (const auto& m : named_materials()) known += (known.empty() ? "\"" : ", \"") + std::string(m.name) + "\"";
+    for (const auto& m : constitutive::named_materials()) known += (known.empty() ? "\"" : ", \"") + std::string(m.name) + "\"";
     cfg.fail("preset", "unknown named material \"" + name + "\"; known: " + known);
   }
-  const nlohmann::json expanded = expand_named_material(*preset, given);
+  const nlohmann::json expanded = constitutive::expand_named_material(*preset, given);
   return read_model_and_parameters(ConfigReader(expanded, "material", sections::fdm_material()));
 }
 

@@ -122,7 +122,7 @@ void Solver::set_initial_stress(const std::function<Stress(const Vec3& zone_cent
     const Stress stress = stress_at(mesh_.zone_centroid(zone));
     for (Index t = zone * kTetrahedraPerZone; t < (zone + 1) * kTetrahedraPerZone; ++t) {
       stress_[t] = stress;
-      material_.model->initialize_state(stress, StateSpan(model_state_).subspan(t * state_size, state_size));
+      material_.model->initialize_state(stress, constitutive::StateSpan(model_state_).subspan(t * state_size, state_size));
     }
   }
   for (Index t = 0; t < tetrahedra_.size(); ++t) compute_tetrahedron_forces(t);
@@ -282,7 +282,7 @@ Vec3 Solver::total_body_force() const {
 void Solver::zone_pass(double dt) {
   const auto n_zones = std::ptrdiff_t(mesh_.zone_count());
   const std::size_t state_size = material_.model->state_size();
-  const ConstitutiveModel& model = *material_.model;
+  const constitutive::ConstitutiveModel& model = *material_.model;
   const bool average_mean_stress = model.needs_mean_stress_averaging();
 #pragma omp parallel for num_threads(thread_count()) schedule(static) if (n_zones >= kMinParallelItems)
   for (std::ptrdiff_t z = 0; z < n_zones; ++z) {
@@ -298,7 +298,7 @@ void Solver::zone_pass(double dt) {
     for (Index t = 0; t < kTetrahedraPerZone; ++t) {
       const Index tet = first + t;
       old_means[t] = stress_[tet].trace() / 3.0;
-      model.update(StrainIncrement{rates[t] * dt}, stress_[tet], StateSpan(model_state_).subspan(tet * state_size, state_size));  // §1.6
+      model.update(constitutive::StrainIncrement{rates[t] * dt}, stress_[tet], constitutive::StateSpan(model_state_).subspan(tet * state_size, state_size));  // §1.6
     }
     const std::span<Stress> zone_stresses(stress_.data() + first, kTetrahedraPerZone);
     if (average_mean_stress) apply_mean_stress_mixed_discretization(zone_stresses, old_means, volumes);  // §1.5, stress pass

@@ -5,7 +5,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/common/version.hpp"
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/grid_snapshot.hpp"
 #include "dfc/fdm/hex_overlays.hpp"
 #include "dfc/fdm/mixed_discretization.hpp"
@@ -31,7 +31,7 @@ nlohmann::json to_json(const Vec3& v) { return nlohmann::json::array({v.x(), v.y
 /// increment of the displacement field, with the same mixed discretization
 /// and volume average as the explicit solver (docs/theory/fdm.md §1.5, §1.6).
 std::vector<Stress> zone_stresses(const fdm::Solver& solver, std::span<const Vec3> displacement) {
-  const fdm::ElasticModuli moduli = solver.model().stiffest_moduli();
+  const constitutive::ElasticModuli moduli = solver.model().stiffest_moduli();
   std::vector<Stress> out(solver.mesh().zone_count());
   for (Index zone = 0; zone < out.size(); ++zone) {
     const Index first = zone * fdm::kTetrahedraPerZone;
@@ -46,7 +46,7 @@ std::vector<Stress> zone_stresses(const fdm::Solver& solver, std::span<const Vec
     Stress sum;
     double volume = 0.0;
     for (Index t = 0; t < fdm::kTetrahedraPerZone; ++t) {
-      sum += (solver.tetrahedron_stresses()[first + t] + fdm::elastic_stress_increment(moduli, strains[t])) * volumes[t];
+      sum += (solver.tetrahedron_stresses()[first + t] + constitutive::elastic_stress_increment(moduli, strains[t])) * volumes[t];
       volume += volumes[t];
     }
     out[zone] = sum * (1.0 / volume);
@@ -74,7 +74,7 @@ nlohmann::json ElasticReferenceBackend::configure(const nlohmann::json& section)
   condensed_.reset();
   model_.emplace(fdm::load_fdm_model(section));
   const fdm::Solver& solver = model_->solver;
-  if (solver.model().keyword() != fdm::ElasticModel::kKeyword)
+  if (solver.model().keyword() != constitutive::ElasticModel::kKeyword)
     throw ConfigError("material.model", "the elastic reference continuum solves linear elasticity only, got \"" +
                                             std::string(solver.model().keyword()) +
                                             "\"; set material.model to \"elastic\" (or run this section with fdm_server)");

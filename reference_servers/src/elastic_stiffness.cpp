@@ -12,7 +12,7 @@ using fdm::Index;
 using fdm::Vec3;
 
 Eigen::SparseMatrix<double> assemble_elastic_stiffness(std::span<const fdm::Tetrahedron> tetrahedra, std::size_t gridpoint_count,
-                                                       const fdm::ElasticModuli& moduli) {
+                                                       const constitutive::ElasticModuli& moduli) {
   const double shear = moduli.shear;
   const double bulk = moduli.bulk;
   std::vector<Eigen::Triplet<double>> entries;

@@ -3,7 +3,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/fdm/fdm_config.hpp"
-#include "dfc/fdm/structured_cam_clay_model.hpp"
+#include "dfc/constitutive/structured_cam_clay_model.hpp"
 
 namespace dfc::fdm {
 namespace {
@@ -159,9 +159,9 @@ TEST(FdmConfig, ChalkPresetIsSeedTable2AndKeysNextToItOverride) {
   nlohmann::json section = valid_section();
   section["material"] = {{"preset", "chalk_snw"}, {"density_kg_m3", 1900.0}};
   const FdmModel model = load_fdm_model(section);
-  const auto* cam_clay = dynamic_cast<const StructuredCamClayModel*>(&model.solver.model());
+  const auto* cam_clay = dynamic_cast<const constitutive::StructuredCamClayModel*>(&model.solver.model());
   ASSERT_NE(cam_clay, nullptr);
-  const StructuredCamClayParameters& m = cam_clay->parameters();
+  const constitutive::StructuredCamClayParameters& m = cam_clay->parameters();
   EXPECT_DOUBLE_EQ(m.ps0, 3.0e6);
   EXPECT_DOUBLE_EQ(m.pt0, 2.0e5);
   EXPECT_DOUBLE_EQ(m.mf, 1.0);

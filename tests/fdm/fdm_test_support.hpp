@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/equilibrium.hpp"
 #include "dfc/fdm/hex_overlays.hpp"
 #include "dfc/fdm/solver.hpp"
@@ -26,7 +26,7 @@ inline double mesh_volume(const Mesh& mesh) {
 }
 
 inline Material elastic_material(double young_modulus, double poisson_ratio, double density) {
-  return {density, std::make_unique<ElasticModel>(ElasticModel::from_young_poisson(young_modulus, poisson_ratio))};
+  return {density, std::make_unique<constitutive::ElasticModel>(constitutive::ElasticModel::from_young_poisson(young_modulus, poisson_ratio))};
 }
 
 /// Steps until the unbalanced-force ratio drops below `target` (after a few

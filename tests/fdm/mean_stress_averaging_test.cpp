@@ -4,10 +4,10 @@
 
 #include <array>
 
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/mixed_discretization.hpp"
-#include "dfc/fdm/mohr_coulomb_model.hpp"
-#include "dfc/fdm/structured_cam_clay_model.hpp"
+#include "dfc/constitutive/mohr_coulomb_model.hpp"
+#include "dfc/constitutive/structured_cam_clay_model.hpp"
 
 namespace dfc::fdm {
 namespace {
@@ -27,11 +27,11 @@ TEST(MeanStressAveraging, ReplacesEachMeanIncrementByTheVolumeAverageAndKeepsDev
 }
 
 TEST(MeanStressAveraging, OnlyPlasticModelsWithVolumeChangeAskForIt) {
-  EXPECT_FALSE(ElasticModel(ElasticModuli{1e6, 1e6}).needs_mean_stress_averaging());  // keeps the elastic path fast
-  StructuredCamClayParameters m;
-  m.moduli = ElasticModuli{1e6, 1e6};
+  EXPECT_FALSE(constitutive::ElasticModel(constitutive::ElasticModuli{1e6, 1e6}).needs_mean_stress_averaging());  // keeps the elastic path fast
+  constitutive::StructuredCamClayParameters m;
+  m.moduli = constitutive::ElasticModuli{1e6, 1e6};
   m.ps0 = 1e5;
-  EXPECT_TRUE(StructuredCamClayModel(m).needs_mean_stress_averaging());
+  EXPECT_TRUE(constitutive::StructuredCamClayModel(m).needs_mean_stress_averaging());
 }
 
 }  // namespace

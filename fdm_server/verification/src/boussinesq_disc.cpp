@@ -14,7 +14,7 @@
 #include <memory>
 #include <numbers>
 
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/verification/fixtures.hpp"
 
 namespace dfc::fdm::verification {
@@ -69,7 +69,7 @@ ProblemResult run_boussinesq_disc(int level) {
   const double ratio = std::pow(1.2, 12.0 / double(n));
   BoxSpec spec{Vec3(0.0, 0.0, -size), Vec3(size, size, size), {n, n, n}, {ratio, ratio, 1.0 / ratio}};
   Solver solver(make_box(spec),
-                Material{2000.0, std::make_unique<ElasticModel>(ElasticModel::from_young_poisson(b.young_modulus, b.poisson_ratio))},
+                Material{2000.0, std::make_unique<constitutive::ElasticModel>(constitutive::ElasticModel::from_young_poisson(b.young_modulus, b.poisson_ratio))},
                 static_settings());
   solver.apply_boundary_condition({"xmin", BoundaryKind::roller});
   solver.apply_boundary_condition({"ymin", BoundaryKind::roller});

@@ -23,14 +23,14 @@
 #include <nlohmann/json.hpp>
 
 #include "dfc/fdm/fdm_config.hpp"
-#include "dfc/fdm/material_point_driver.hpp"
+#include "dfc/constitutive/material_point_driver.hpp"
 
 namespace {
 
-using dfc::fdm::MaterialPointDriver;
+using dfc::constitutive::MaterialPointDriver;
 
 // A dense Mohr-Coulomb rock-like soil: E = 100 MPa, ν = 0.25, c = 20 kPa,
-// φ = 30°, ψ = 10°, σt = 10 kPa (the values of tests/fdm/mohr_coulomb_model_test.cpp's kind).
+// φ = 30°, ψ = 10°, σt = 10 kPa (the values of tests/constitutive/mohr_coulomb_model_test.cpp's kind).
 const char* kMohrCoulomb = R"({"model": "mohr_coulomb", "density_kg_m3": 2000, "young_modulus_pa": 1e8, "poisson_ratio": 0.25,
   "cohesion_pa": 2e4, "friction_angle_deg": 30, "dilation_angle_deg": 10, "tensile_strength_pa": 1e4})";
 const char* kChalk = R"({"preset": "chalk_snw"})";

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <memory>
 
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/verification/fixtures.hpp"
 
 namespace dfc::fdm::verification {
@@ -25,7 +25,7 @@ ProblemResult run_gravity_column(int level) {
   SolverSettings settings = static_settings();
   settings.gravity = Vec3(0.0, 0.0, -d.gravity);
   Solver solver(make_box({Vec3::Zero(), Vec3(1.0, 1.0, d.height), {1, 1, zones}}),
-                Material{d.density, std::make_unique<ElasticModel>(ElasticModel::from_young_poisson(d.young_modulus, d.poisson_ratio))},
+                Material{d.density, std::make_unique<constitutive::ElasticModel>(constitutive::ElasticModel::from_young_poisson(d.young_modulus, d.poisson_ratio))},
                 settings);
   for (const char* side : {"xmin", "xmax", "ymin", "ymax"}) solver.apply_boundary_condition({side, BoundaryKind::roller});
   solver.apply_boundary_condition({"zmin", BoundaryKind::fixed});

@@ -10,7 +10,7 @@
 #include <memory>
 #include <numbers>
 
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/verification/fixtures.hpp"
 
 namespace dfc::fdm::verification {
@@ -72,7 +72,7 @@ ProblemResult run_kirsch_hole(int level) {
   const KirschSolution k;
   const Index n = 12 * (Index(1) << level);
   const QuarterAnnulus annulus{k.radius, 6.0 * k.radius, n, n};
-  Solver solver = make_quarter_annulus(annulus, Material{2600.0, std::make_unique<ElasticModel>(ElasticModuli{k.bulk_modulus, k.shear_modulus})});
+  Solver solver = make_quarter_annulus(annulus, Material{2600.0, std::make_unique<constitutive::ElasticModel>(constitutive::ElasticModuli{k.bulk_modulus, k.shear_modulus})});
   solver.set_initial_stress([&](const Vec3&) { return Stress{-k.p2, -k.p1, -k.poisson_ratio() * (k.p1 + k.p2), 0.0, 0.0, 0.0}; });
   const std::vector<Vec3> outer = stress_field_forces(solver.mesh(), "outer", [&](const Vec3& x) { return cartesian_stress(k, x); });
   for (std::size_t gp = 0; gp < outer.size(); ++gp) solver.set_external_force(gp, outer[gp]);

@@ -8,7 +8,7 @@
 #include <vector>
 #include <memory>
 
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/verification/fixtures.hpp"
 
 namespace dfc::fdm::verification {
@@ -41,7 +41,7 @@ ProblemResult run_lame_cylinder(int level) {
   const Index n = 8 * (Index(1) << level);
   const QuarterAnnulus annulus{exact.inner_radius, exact.outer_radius, n, n};
   Solver solver = make_quarter_annulus(
-      annulus, Material{2000.0, std::make_unique<ElasticModel>(ElasticModel::from_young_poisson(exact.young_modulus, exact.poisson_ratio))});
+      annulus, Material{2000.0, std::make_unique<constitutive::ElasticModel>(constitutive::ElasticModel::from_young_poisson(exact.young_modulus, exact.poisson_ratio))});
   solver.apply_boundary_condition({"inner", BoundaryKind::pressure, exact.inner_pressure});
 
   ProblemResult result;

@@ -18,7 +18,7 @@
 #include <memory>
 #include <numbers>
 
-#include "dfc/fdm/mohr_coulomb_model.hpp"
+#include "dfc/constitutive/mohr_coulomb_model.hpp"
 #include "dfc/fdm/verification/fixtures.hpp"
 
 namespace dfc::fdm::verification {
@@ -63,9 +63,9 @@ struct SalenconRun {
 SalenconRun run_once(const SalenconSolution& s, const SalenconLevel& level) {
   const QuarterAnnulus annulus{s.radius, kOuterRadius * s.radius, level.zones, level.zones};
   // No tension cut-off below the apex: the closed form has none (σ_t is capped at c/tanφ).
-  const MohrCoulombStrength strength{s.cohesion, s.friction_deg, s.dilation_deg, std::numeric_limits<double>::infinity()};
-  auto model = std::make_unique<MohrCoulombModel>(ElasticModuli{s.bulk_modulus, s.shear_modulus}, strength);
-  const MohrCoulombModel& mc = *model;
+  const constitutive::MohrCoulombStrength strength{s.cohesion, s.friction_deg, s.dilation_deg, std::numeric_limits<double>::infinity()};
+  auto model = std::make_unique<constitutive::MohrCoulombModel>(constitutive::ElasticModuli{s.bulk_modulus, s.shear_modulus}, strength);
+  const constitutive::MohrCoulombModel& mc = *model;
   Solver solver = make_quarter_annulus(annulus, Material{2600.0, std::move(model)});
   solver.set_initial_stress([&](const Vec3&) { return Stress{-s.in_situ, -s.in_situ, -kOutOfPlaneFraction * s.in_situ, 0.0, 0.0, 0.0}; });
   const Mesh& mesh = solver.mesh();

@@ -16,7 +16,7 @@
 #include <numbers>
 
 #include "dfc/fdm/mesh_generators.hpp"
-#include "dfc/fdm/mohr_coulomb_model.hpp"
+#include "dfc/constitutive/mohr_coulomb_model.hpp"
 #include "dfc/fdm/verification/fixtures.hpp"
 
 namespace dfc::fdm::verification {
@@ -65,8 +65,8 @@ ProblemResult run_spherical_cavity(int level) {
   spec.zones_radial = nr;
   spec.zones_around = n;
   spec.grading_ratio = std::pow(kOuterRadius, 1.0 / double(nr));  // Δr ∝ r: near-cubic zones at every radius
-  const MohrCoulombStrength strength{s.cohesion, s.friction_deg, 0.0, 0.0};
-  auto model = std::make_unique<MohrCoulombModel>(moduli_from_young_poisson(s.young_modulus, s.poisson_ratio), strength);
+  const constitutive::MohrCoulombStrength strength{s.cohesion, s.friction_deg, 0.0, 0.0};
+  auto model = std::make_unique<constitutive::MohrCoulombModel>(constitutive::moduli_from_young_poisson(s.young_modulus, s.poisson_ratio), strength);
   Solver solver(make_sphere_cavity_octant(spec), Material{2000.0, std::move(model)}, static_settings());
   for (const char* plane : {"xmin", "ymin", "zmin"}) solver.apply_boundary_condition({plane, BoundaryKind::roller});
   solver.set_initial_stress([&](const Vec3&) { return SymTensor::isotropic(-s.in_situ); });
@@ -110,8 +110,8 @@ ProblemResult run_spherical_cavity(int level) {
   // compared absolutely (scale 1), so that any yielded tetrahedron fails the row.
   double yielded = 0.0;
   for (Index t = 0; t < solver.tetrahedra().size(); ++t)
-    if (solver.tetrahedron_state(t)[MohrCoulombModel::kPlasticShearStrain] > 0.0 ||
-        solver.tetrahedron_state(t)[MohrCoulombModel::kPlasticTensileStrain] > 0.0)
+    if (solver.tetrahedron_state(t)[constitutive::MohrCoulombModel::kPlasticShearStrain] > 0.0 ||
+        solver.tetrahedron_state(t)[constitutive::MohrCoulombModel::kPlasticTensileStrain] > 0.0)
       yielded += 1.0;
   result.rows.push_back(compare("tetrahedra yielded at 0.9 of the way to p_y", "-", yielded, 0.0, kSphericalCavityTolerance, 1.0));
   result.mesh = lattice_text("sphere octant b = 5a, 3 patches", nr, n, n, mesh.zone_count());

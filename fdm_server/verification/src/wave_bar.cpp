@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "dfc/fdm/elastic_model.hpp"
+#include "dfc/constitutive/elastic_model.hpp"
 #include "dfc/fdm/mesh_generators.hpp"
 #include "dfc/fdm/verification/fixtures.hpp"
 
@@ -33,7 +33,7 @@ ProblemResult run_wave_bar(int level) {
   settings.local_damping = 0.0;  // §2(e): no local damping, real masses
   settings.mass_scaling = false;
   Solver solver(make_box({Vec3::Zero(), Vec3(dz, dz, d.length), {1, 1, n}}),
-                Material{d.density, std::make_unique<ElasticModel>(ElasticModel::from_young_poisson(d.young_modulus, d.poisson_ratio))},
+                Material{d.density, std::make_unique<constitutive::ElasticModel>(constitutive::ElasticModel::from_young_poisson(d.young_modulus, d.poisson_ratio))},
                 settings);
   for (const char* side : {"xmin", "xmax", "ymin", "ymax"}) solver.apply_boundary_condition({side, BoundaryKind::roller});
   solver.apply_boundary_condition({"zmax", BoundaryKind::fixed});

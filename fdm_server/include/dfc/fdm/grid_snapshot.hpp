@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/fdm/types.hpp"
 #include "dfc/fdm/mesh.hpp"
 #include "dfc/protocol/array.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Geostatic initial stress (docs/theory/fdm.md §2(c)), so that a run under gravity
 // can start in equilibrium.
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/fdm/types.hpp"
 
 namespace dfc::fdm {
 

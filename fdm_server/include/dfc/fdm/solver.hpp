@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "dfc/fdm/boundary_conditions.hpp"
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/constitutive/constitutive_model.hpp"
 #include "dfc/fdm/mesh.hpp"
 #include "dfc/fdm/tetrahedron.hpp"
 
@@ -42,7 +42,7 @@ namespace dfc::fdm {
 
 struct Material {
   double density = 0.0;  ///< kg/m³
-  std::unique_ptr<ConstitutiveModel> model;
+  std::unique_ptr<constitutive::ConstitutiveModel> model;
 };
 
 struct SolverSettings {
@@ -98,7 +98,7 @@ class Solver {
   [[nodiscard]] const Mesh& mesh() const { return mesh_; }
   [[nodiscard]] const SolverSettings& settings() const { return settings_; }
   [[nodiscard]] double density() const { return material_.density; }
-  [[nodiscard]] const ConstitutiveModel& model() const { return *material_.model; }
+  [[nodiscard]] const constitutive::ConstitutiveModel& model() const { return *material_.model; }
   [[nodiscard]] std::span<const Tetrahedron> tetrahedra() const { return tetrahedra_; }
   [[nodiscard]] std::span<const Vec3> velocities() const { return velocity_; }
   [[nodiscard]] std::span<const Vec3> displacements() const { return displacement_; }

@@ -17,7 +17,7 @@
 
 #include <Eigen/SparseCore>
 
-#include "dfc/fdm/constitutive_model.hpp"
+#include "dfc/constitutive/constitutive_model.hpp"
 #include "dfc/fdm/tetrahedron.hpp"
 
 namespace dfc::reference {
@@ -25,6 +25,6 @@ namespace dfc::reference {
 /// K (3N × 3N, degree of freedom 3·gridpoint + component) of `tetrahedra`,
 /// given zone-major with fdm::kTetrahedraPerZone per zone (fdm::Solver::tetrahedra()).
 [[nodiscard]] Eigen::SparseMatrix<double> assemble_elastic_stiffness(std::span<const fdm::Tetrahedron> tetrahedra,
-                                                                     std::size_t gridpoint_count, const fdm::ElasticModuli& moduli);
+                                                                     std::size_t gridpoint_count, const constitutive::ElasticModuli& moduli);
 
 }  // namespace dfc::reference

@@ -1,0 +1,131 @@
+#pragma once
+// The axisymmetric updated-Lagrangian explicit solver (docs/continuum_pile.md
+// §1–§3): linear triangles on the current geometry, the rate of deformation
+// with its hoop term, the Jaumann rotation, the nodal-averaged volumetric
+// strain increment, any shared constitutive model (dfc_constitutive), central
+// differences with scaled masses (Δt = 1) and local damping as in fdm_server
+// (theory/fdm.md §1.8–§1.11).
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "dfc/constitutive/constitutive_model.hpp"
+#include "dfc/continuum/axisymmetric_mesh.hpp"
+#include "dfc/continuum/delaunay_retriangulation.hpp"
+#include "dfc/continuum/triangle_kinematics.hpp"
+
+namespace dfc::continuum {
+
+struct SolverSettings {
+  /// Local damping coefficient α (Cundall 1987; theory/fdm.md §1.9).
+  double damping = 0.8;
+  /// Scaled mass = safety × ¼ × the Gershgorin row sum of the stiffness
+  /// (Δt = 1 is stable for safety ≥ 1 on a fixed geometry); the margin covers
+  /// the coupling added by the nodal averaging and the stiffening of
+  /// elements between two steps.
+  double mass_safety = 2.0;
+  /// The Bonet & Burton (1998) nodal average of the volumetric strain
+  /// increment (docs/continuum_pile.md §3). Off only to show the locking it
+  /// removes (tests/continuum/).
+  bool average_volumetric_strain = true;
+  /// Density at the start, kg/m³: each triangle's mass ρ V₀ is kept (mass
+  /// balance of an updated-Lagrangian element) and carried across remeshes.
+  double density = 1000.0;
+};
+
+/// What a remesh did (docs/continuum_pile.md §4–§5).
+struct RemeshReport {
+  Index triangles_before = 0;
+  Index triangles_after = 0;
+  /// New triangles that were not triangles of the old mesh.
+  Index triangles_changed = 0;
+  /// Nodes added by the Delaunay refinement.
+  Index nodes_added = 0;
+  double mass_before = 0.0;  ///< kg
+  /// Σ ρ V of the new triangles with the transferred densities, before the
+  /// correction that restores mass_before exactly, kg.
+  double mass_transferred = 0.0;
+};
+
+enum class Axis { r = 0, z = 1 };
+
+class AxisymmetricSolver {
+ public:
+  /// Every triangle starts at `initial_stress` with the model's initial history for it.
+  AxisymmetricSolver(AxisymmetricMesh mesh, std::shared_ptr<const constitutive::ConstitutiveModel> model,
+                     const Stress& initial_stress, SolverSettings settings = {});
+
+  /// Holds the velocity component of the nodes at `velocity` (m per step) from now on.
+  void prescribe_velocity(std::span<const Index> nodes, Axis axis, double velocity);
+  /// A normal pressure (Pa, compression positive) on the edges of `edge_group`,
+  /// applied on the current geometry each step.
+  void apply_pressure(const std::string& edge_group, double pressure);
+
+  /// One step of Δt = 1 (pseudo-time).
+  void step();
+
+  [[nodiscard]] const AxisymmetricMesh& mesh() const { return mesh_; }
+  [[nodiscard]] std::span<const Stress> stresses() const { return stresses_; }
+  /// Sum over `nodes` of the internal nodal forces of the last step (N): for
+  /// nodes whose motion is prescribed, the force the body resists it with.
+  [[nodiscard]] Point internal_force_sum(std::span<const Index> nodes) const;
+  /// Mean unbalanced force magnitude of the free components over the mean
+  /// magnitude of the internal and applied forces (theory/fdm.md §1.11), of
+  /// the last step or, after a remesh, of the new mesh.
+  [[nodiscard]] double unbalanced_force_ratio() const { return unbalanced_force_ratio_; }
+  /// The smallest triangle area over its value when the triangle was created (detects inversion).
+  [[nodiscard]] double smallest_area_ratio() const;
+  /// The smallest angle of any triangle, degrees: when to remesh.
+  [[nodiscard]] double smallest_angle_deg() const;
+  [[nodiscard]] long steps_taken() const { return steps_; }
+  /// Σ of the triangles' masses, kg.
+  [[nodiscard]] double total_mass() const;
+
+  /// Re-triangulates the current nodes (constrained Delaunay, the boundary
+  /// kept). Each new triangle takes the stress, history and density of the
+  /// old triangle containing its centroid, corrected by the change of the
+  /// field recovered at the nodes (volume-weighted means) between the two
+  /// centroids, so a triangle that was already there keeps its state; the
+  /// masses are then scaled so that the total is unchanged. Nodes, velocities
+  /// and boundary conditions are untouched. With `minimum_angle_deg` > 0 the
+  /// triangulation is refined until no angle is smaller (CGAL Delaunay
+  /// refinement); an added node takes the old mesh's velocity field, and one
+  /// on a boundary edge the velocity components prescribed at both its ends
+  /// (interpolated) and the named groups of both, its edge being split in
+  /// the edge groups.
+  RemeshReport remesh(double minimum_angle_deg = 0.0);
+
+ private:
+  void move_and_update_stresses();
+  void compute_forces_and_masses();
+  void update_velocities();
+  /// Where an added node lies in the old mesh: its triangle and barycentric weights.
+  struct Interpolation {
+    Index triangle = 0;
+    std::array<double, 3> weights{};
+  };
+  /// Appends the refinement's nodes with their nodal fields, conditions and groups.
+  std::vector<Interpolation> add_nodes(const Retriangulation& retriangulation, std::span<const Edge> boundary);
+  [[nodiscard]] double measure_unbalanced_force_ratio() const;
+
+  AxisymmetricMesh mesh_;
+  std::shared_ptr<const constitutive::ConstitutiveModel> model_;
+  SolverSettings settings_;
+  std::vector<Point> velocities_;
+  std::vector<Point> internal_forces_;
+  std::vector<Point> external_forces_;
+  std::vector<double> masses_;
+  std::vector<Stress> stresses_;
+  std::vector<double> model_state_;
+  std::vector<double> initial_areas_;  ///< area of each triangle when it was created
+  std::vector<double> triangle_masses_;  ///< kg
+  /// Per node and axis: whether the velocity is prescribed, and its value.
+  std::vector<std::array<bool, 2>> prescribed_;
+  std::vector<Point> prescribed_velocities_;
+  std::vector<std::pair<std::string, double>> pressures_;
+  double unbalanced_force_ratio_ = 0.0;
+  long steps_ = 0;
+};
+
+}  // namespace dfc::continuum
