@@ -2,8 +2,6 @@
 // capability checkpoint writes its state where it is told and restores it
 // only while configured; a missing or damaged file gets BAD_CHECKPOINT and
 // changes nothing. A server without it answers both with UNSUPPORTED.
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 
@@ -19,12 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A folder for this checker's checkpoint files, one per checker process.
-fs::path scratch_file(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / ("dfc-conformance-" + std::to_string(::getpid()));
-  fs::create_directories(folder);
-  return folder / name;
-}
+/// A checkpoint file in the checker's own folder, which goes with it (before,
+/// a folder of a guessable name in /tmp that a skipped or failed check left behind).
+fs::path scratch_file(const Context& context, const std::string& name) { return context.scratch_folder() / name; }
 
 /// checkpoint and restore came with 1.3 (SPEC.md §1): the other checkpoint
 /// checks skip an older server, and this one holds it to the older answer.
@@ -36,8 +31,8 @@ void without_capability_is_unsupported(Context& context) {
   if (context.checkpoint) throw NotApplicable("the server has capability checkpoint");
   const bool older = context.declared_minor && *context.declared_minor < kSinceMinor;
   const char* code = older ? "UNKNOWN_TYPE" : "UNSUPPORTED";
-  expect_error(context.request(protocol::type::checkpoint, {{"path", scratch_file("unsupported.checkpoint").string()}}), {code});
-  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("unsupported.checkpoint").string()}}), {code});
+  expect_error(context.request(protocol::type::checkpoint, {{"path", scratch_file(context, "unsupported.checkpoint").string()}}), {code});
+  expect_error(context.request(protocol::type::restore, {{"path", scratch_file(context, "unsupported.checkpoint").string()}}), {code});
 }
 
 void needs_capability(const Context& context) {
@@ -52,19 +47,19 @@ void missing_path_is_bad_message(Context& context) {
 
 void missing_file_is_bad_checkpoint(Context& context) {
   needs_capability(context);
-  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("never_written.checkpoint").string()}}), {"BAD_CHECKPOINT"});
+  expect_error(context.request(protocol::type::restore, {{"path", scratch_file(context, "never_written.checkpoint").string()}}), {"BAD_CHECKPOINT"});
 }
 
 void damaged_file_is_bad_checkpoint(Context& context) {
   needs_capability(context);
-  const fs::path file = scratch_file("damaged.checkpoint");
+  const fs::path file = scratch_file(context, "damaged.checkpoint");
   std::ofstream(file, std::ios::binary) << "DFCCKPT1 not a checkpoint";
   expect_error(context.request(protocol::type::restore, {{"path", file.string()}}), {"BAD_CHECKPOINT"});
 }
 
 void write_then_restore_while_configured(Context& context) {
   needs_capability(context);
-  const fs::path file = scratch_file("configured.checkpoint");
+  const fs::path file = scratch_file(context, "configured.checkpoint");
   const protocol::Message written = context.request(protocol::type::checkpoint, {{"path", file.string()}});
   expect_type(written, protocol::type::checkpointed);
   expect_step(written, context.step);
@@ -76,17 +71,16 @@ void write_then_restore_while_configured(Context& context) {
 
 void restore_when_running_is_out_of_order(Context& context) {
   needs_capability(context);
-  expect_error(context.request(protocol::type::restore, {{"path", scratch_file("configured.checkpoint").string()}}), {"OUT_OF_ORDER"});
+  expect_error(context.request(protocol::type::restore, {{"path", scratch_file(context, "configured.checkpoint").string()}}), {"OUT_OF_ORDER"});
 }
 
 void checkpoint_when_running_has_current_step(Context& context) {
   needs_capability(context);
-  const fs::path file = scratch_file("running.checkpoint");
+  const fs::path file = scratch_file(context, "running.checkpoint");
   const protocol::Message written = context.request(protocol::type::checkpoint, {{"path", file.string()}});
   expect_type(written, protocol::type::checkpointed);
   expect_step(written, context.step);
   expect(fs::is_regular_file(file), "the server answered checkpointed but wrote no file at " + file.string());
-  fs::remove_all(file.parent_path());
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ bool is_port(std::string_view text) {
 }
 }  // namespace
 
-Context::Context(Options options) : options_(std::move(options)), run_keys_(key_folder_.path()) {}
+Context::Context(Options options) : options_(std::move(options)), run_keys_(folder_.path()) {}
 
 std::optional<std::string> Context::server_key() const {
   if (!authenticated_) return std::nullopt;

@@ -53,6 +53,9 @@ class Context {
   /// The key a connection of a check's own needs: the server's public key
   /// when it authenticates, else none.
   [[nodiscard]] std::optional<std::string> server_key() const;
+  /// A folder of the checker's own (mode 0700, removed when it ends) for the
+  /// files the checks have the server write or read (checkpoints, SPEC.md §4.7).
+  [[nodiscard]] const std::filesystem::path& scratch_folder() const noexcept { return folder_.path(); }
 
   /// One request with the run's deadline; its seq is assigned by the connection.
   /// Returns error replies (never throws RemoteError). Throws TimeoutError or ServerGone.
@@ -101,9 +104,10 @@ class Context {
   void check_still_running();
 
   Options options_;
-  /// The key file every server of this run is started with, in a folder of
-  /// the checker's own (removed with it).
-  TemporaryFolder key_folder_{"dfc-conformance-"};
+  /// The key file every server of this run is started with and the checks'
+  /// scratch files, in a folder of the checker's own (removed with it, on
+  /// every path out: nothing is left in the system's temporary folder).
+  TemporaryFolder folder_{"dfc-conformance-"};
   protocol::RunKeyFile run_keys_;
   bool authenticated_ = false;
   zmq::context_t zmq_context_{1};
