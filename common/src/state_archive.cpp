@@ -26,6 +26,7 @@ std::string StateReader::string() {
 }
 
 void StateReader::tag(std::string_view name) {
+  work_progress::advance();  // as StateWriter::tag
   const std::size_t at = position_;
   const auto n = value<std::uint64_t>();
   if (n != name.size() || n > remaining() || std::string_view(take(std::size_t(n)), std::size_t(n)) != name) {

@@ -10,6 +10,7 @@
 #endif
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/work_progress.hpp"
 #include "dfc/fdm/hex_overlays.hpp"
 #include "dfc/fdm/masses.hpp"
 #include "dfc/fdm/mixed_discretization.hpp"
@@ -43,6 +44,7 @@ Solver::Solver(Mesh mesh, Material material, SolverSettings settings)
   const std::size_t n_gp = mesh_.gridpoint_count();
   tetrahedra_.reserve(mesh_.zone_count() * kTetrahedraPerZone);
   for (Index zone = 0; zone < mesh_.zone_count(); ++zone) {
+    work_progress::advance_every(std::int64_t(zone), 4096);  // the set-up of a large grid, before any step
     const auto tets = zone_tetrahedra(mesh_, zone);
     tetrahedra_.insert(tetrahedra_.end(), tets.begin(), tets.end());
   }
@@ -119,6 +121,7 @@ void Solver::apply_boundary_condition(const BoundaryCondition& condition) {
 void Solver::set_initial_stress(const std::function<Stress(const Vec3& zone_centroid)>& stress_at) {
   const std::size_t state_size = material_.model->state_size();
   for (Index zone = 0; zone < mesh_.zone_count(); ++zone) {
+    work_progress::advance_every(std::int64_t(zone), 4096);
     const Stress stress = stress_at(mesh_.zone_centroid(zone));
     for (Index t = zone * kTetrahedraPerZone; t < (zone + 1) * kTetrahedraPerZone; ++t) {
       stress_[t] = stress;
@@ -225,6 +228,7 @@ void Solver::step(double dt) {
   gridpoint_pass(dt);
   zone_pass(dt);
   ++step_count_;
+  work_progress::advance();  // the heartbeat's proof that the main thread works (SPEC.md §9.1)
   check_finite();
 }
 

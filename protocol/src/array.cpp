@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "dfc/common/work_progress.hpp"
 #include "dfc/protocol/error_code.hpp"
 
 namespace dfc::protocol {
@@ -52,6 +53,7 @@ Array make_array(std::string name, DType dtype, std::vector<std::int64_t> shape,
     throw ProtocolError(ErrorCode::internal, "array '" + array.name + "': shape does not match the number of values");
   array.bytes.resize(values.size_bytes());
   if (!values.empty()) std::memcpy(array.bytes.data(), values.data(), values.size_bytes());
+  work_progress::advance();  // a snapshot of a large body is a series of arrays of millions of rows, each built before it
   return array;
 }
 

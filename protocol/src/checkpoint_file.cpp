@@ -1,5 +1,6 @@
 #include "dfc/protocol/checkpoint_file.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <system_error>
 
@@ -7,12 +8,16 @@
 
 #include "dfc/common/state_archive.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/common/work_progress.hpp"
 #include "dfc/protocol/error_code.hpp"
 
 namespace dfc::protocol {
 
 namespace {
 constexpr std::string_view kMagic = "DFCCKPT1";
+// A large model's state is gigabytes: it moves to and from the disk in
+// chunks, the heartbeat's work counter moving per chunk (SPEC.md §9.1).
+constexpr std::size_t kChunkBytes = std::size_t{64} << 20;
 constexpr std::uint32_t kByteOrderMark = 0x01020304;
 
 [[noreturn]] void refuse(const std::filesystem::path& path, const std::string& why) {
@@ -36,7 +41,10 @@ void write_checkpoint_file(const std::filesystem::path& path, const CheckpointHe
   {
     std::ofstream file(partial, std::ios::binary | std::ios::trunc);
     file.write(kMagic.data(), std::streamsize(kMagic.size()));
-    file.write(bytes.data(), std::streamsize(bytes.size()));
+    for (std::size_t start = 0; start < bytes.size() && file; start += kChunkBytes) {
+      file.write(bytes.data() + start, std::streamsize(std::min(kChunkBytes, bytes.size() - start)));
+      work_progress::advance();
+    }
     file.close();
     if (!file) refuse(path, "cannot be written (is its folder there and writable, is the disk full?)");
   }
@@ -51,7 +59,11 @@ CheckpointFile read_checkpoint_file(const std::filesystem::path& path) {
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   std::string bytes(ec ? 0 : std::size_t(size), '\0');
   std::ifstream file(path, std::ios::binary);
-  if (ec || !file.read(bytes.data(), std::streamsize(bytes.size()))) refuse(path, "cannot be read");
+  for (std::size_t start = 0; !ec && file && start < bytes.size(); start += kChunkBytes) {
+    file.read(bytes.data() + start, std::streamsize(std::min(kChunkBytes, bytes.size() - start)));
+    work_progress::advance();
+  }
+  if (ec || !file) refuse(path, "cannot be read");
   if (bytes.compare(0, kMagic.size(), kMagic) != 0) refuse(path, "is not a dfc checkpoint (it does not start with " + std::string(kMagic) + ")");
   CheckpointFile result;
   try {

@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/work_progress.hpp"
 #include "dfc/dem/fixed_order_sum.hpp"
 #include "dfc/dem/huge_pages.hpp"
 #include "dfc/dem/integrator.hpp"
@@ -193,9 +194,11 @@ void Simulation::rebuild() {
   const CellGrid grid = cell_ ? build_cell_grid(particles_.position, 2.0 * r_max + search, *cell_, order)
                               : build_cell_grid(particles_.position, 2.0 * r_max + search, order);
   particles_.permute(order, threads_);
+  work_progress::advance();  // each phase of a large body's rebuild may take a while: progress between them
 
   // 3. New candidate lists, with the archived history.
   find_pair_candidates(grid, particles_, search, threads_, pairs_.first, pairs_.second);
+  work_progress::advance();
   // Orient every pair by id so that its history is independent of slot order.
   const auto searched = std::int64_t(pairs_.size());
 #pragma omp parallel for schedule(static) num_threads(threads_) if(searched >= min_parallel_items)
@@ -221,6 +224,7 @@ void Simulation::rebuild() {
   if (join) install_bonds(true);
   if (search > skin_) drop_pairs_beyond_skin();
   compute_pair_constants();
+  work_progress::advance();
 
   bool with_couple = settings_.particle_law.has_couple();
   std::size_t offset = pairs_.size();
@@ -248,6 +252,7 @@ void Simulation::rebuild() {
   ids_at_rebuild_ = particles_.id;
   stale_ = false;
   ++rebuilds_;
+  work_progress::advance();  // a rebuild of a large body may take longer than a step
 }
 
 void Simulation::append_unmatched_bonds(const PairContacts& before, std::span<const std::uint32_t> old_to_new, std::vector<std::uint32_t>& match) {
@@ -439,6 +444,7 @@ void Simulation::step(double dt, ContactRecord record) {
     cell_->deform(dt, particles_.position, reference_positions_, threads_);
   }
   ++step_;
+  work_progress::advance();  // the heartbeat's proof that the main thread works (SPEC.md §9.1)
 
   // Verlet criterion: two particles approach by at most 2 max|dx|, a particle
   // and a facet by max|dx| + max|dx_wall|; either must stay below the skin.

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/work_progress.hpp"
 #include "dfc/dem/region_config.hpp"
 
 namespace dfc::dem {
@@ -89,6 +90,7 @@ std::array<int, 3> replicate_into(ReplicatedBody& body, const PreparedRev& rev, 
   // Slot of (sphere i, copy c) in the body, or -1 if trimmed; copy index c = (cz ny + cy) nx + cx.
   std::vector<std::int64_t> slot(std::size_t(copies * n), -1);
   for (std::int64_t c = 0; c < copies; ++c) {
+    work_progress::advance();  // a copy of the REV: a large body is thousands of them
     const Vec3 origin{lo.x + double(c % nx) * l.x, lo.y + double((c / nx) % ny) * l.y, lo.z + double(c / (std::int64_t(nx) * ny)) * l.z};
     for (std::int64_t i = 0; i < n; ++i) {
       const GeneratedSphere& s = rev.spheres[std::size_t(i)];
@@ -102,6 +104,7 @@ std::array<int, 3> replicate_into(ReplicatedBody& body, const PreparedRev& rev, 
   }
   // Pairs: first of copy c with second of copy c + image, where that copy exists.
   for (std::size_t k = 0; k < rev.pairs.size(); ++k) {
+    work_progress::advance_every(std::int64_t(k), 1024);  // each REV pair is placed in every copy
     const RevPair& p = rev.pairs[k];
     for (std::int64_t c = 0; c < copies; ++c) {
       std::int64_t cx = c % nx + p.image[0], cy = (c / nx) % ny + p.image[1], cz = c / (std::int64_t(nx) * ny) + p.image[2];

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "dfc/common/errors.hpp"
+#include "dfc/common/work_progress.hpp"
 #include "dfc/dem/cell_stress.hpp"
 #include "dfc/dem/pcrm_replication.hpp"
 #include "dfc/dem/portable_random.hpp"
@@ -104,6 +105,7 @@ ExpansionPacking place(const RadiusExpansionSpec& spec, const PeriodicCell& cell
   out.spheres.assign(out.final_radius.size(), {});
   constexpr int max_attempts = 100000;
   for (const auto k : by_size) {
+    work_progress::advance();  // one sphere placed: up to max_attempts tries each, millions of spheres in a large REV
     const double r = out.final_radius[k] / spec.multiplier;
     bool placed = false;
     for (int attempt = 0; attempt < max_attempts && !placed; ++attempt) {

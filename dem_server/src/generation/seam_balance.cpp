@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "dfc/common/work_progress.hpp"
+
 namespace dfc::dem {
 
 namespace {
@@ -108,6 +110,7 @@ std::size_t solve_laplacian(const BondGraph& g, const std::vector<bool>& held, c
   const std::size_t limit = 20000;
   std::size_t it = 0;
   while (it < limit && dot(r, r) > target) {
+    work_progress::advance();  // one conjugate-gradient sweep over the bond graph
     apply_laplacian(g, held, p, q);
     const double pq = dot(p, q);
     if (!(pq > 0.0)) break;

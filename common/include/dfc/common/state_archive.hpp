@@ -22,6 +22,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "dfc/common/work_progress.hpp"
+
 namespace dfc {
 
 /// A checkpoint that cannot be read: truncated, damaged, or of another layout.
@@ -56,7 +58,11 @@ class StateWriter {
   }
   void string(std::string_view s);
   /// A section marker: a reader that lost its place fails here, naming `name`.
-  void tag(std::string_view name) { string(name); }
+  /// Each section of a large state is a while in the making: the work counter moves (SPEC.md §9.1).
+  void tag(std::string_view name) {
+    string(name);
+    work_progress::advance();
+  }
 
   [[nodiscard]] std::size_t size() const noexcept { return out_.size(); }
   [[nodiscard]] std::string take() { return std::move(out_); }
