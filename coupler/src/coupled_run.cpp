@@ -218,7 +218,9 @@ std::vector<std::unique_ptr<Participant>> start_participants(zmq::context_t& con
   for (const auto& spec : scenario.participants) {
     participants.push_back(
         std::make_unique<Participant>(context, spec, log_dir, milliseconds_from_seconds(scenario.run.startup_timeout_s),
-                                      milliseconds_from_seconds(scenario.run.hang_timeout_s), stop, &run_keys));
+                                      protocol::HangTimeouts{milliseconds_from_seconds(scenario.run.hang_timeout_s),
+                                                             milliseconds_from_seconds(scenario.run.stall_timeout_s)},
+                                      stop, &run_keys));
     participants.back()->hello(milliseconds(10'000));
   }
   const bool coupled = participants.size() == 2;

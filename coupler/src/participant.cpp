@@ -1,5 +1,6 @@
 #include "dfc/coupler/participant.hpp"
 
+#include "dfc/common/durations.hpp"
 #include "dfc/common/errors.hpp"
 #include "dfc/common/echo.hpp"
 #include "dfc/protocol/authentication.hpp"
@@ -18,9 +19,9 @@ void StopRequest::check(const std::string& pending) {
 }
 
 Participant::Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-                         std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop,
+                         std::chrono::milliseconds startup_timeout, protocol::HangTimeouts hang, StopRequest& stop,
                          const protocol::RunKeyFile* run_keys)
-    : spec_(spec), stop_(&stop), context_(&context), hang_timeout_(hang_timeout) {
+    : spec_(spec), stop_(&stop), context_(&context), hang_(hang) {
   std::string endpoint = spec.endpoint;
   std::optional<std::string> server_key;
   if (endpoint.empty()) {
@@ -81,8 +82,13 @@ void Participant::fail(const std::exception& error, const std::string& doing) {
   std::string message = "server " + label() + " failed while " + doing + ": " + error.what();
   if (const auto* hung = dynamic_cast<const protocol::HungError*>(&error)) {
     hung_ = true;
-    message = "server " + label() + " stopped answering while " + doing + ": " + hung->silence() +
-              ". It is hung or stopped (SIGSTOP, a frozen node): a busy server still answers its heartbeat; run.hang_timeout_s sets how long the coupler waits";
+    if (hung->kind() == protocol::HungError::Kind::silent)
+      message = "server " + label() + " stopped answering while " + doing + ": " + hung->account() +
+                ". It is hung or stopped (SIGSTOP, a frozen node): a busy server still answers its heartbeat; run.hang_timeout_s sets how long the coupler waits";
+    else
+      message = "server " + label() + " answers but makes no progress while " + doing + ": " + hung->account() +
+                ". Its main thread is deadlocked or spinning (SPEC.md §9.1); if one of its requests legitimately spends longer than " +
+                seconds_text(hang_.stall) + " without a step, raise run.stall_timeout_s";
   } else if (dynamic_cast<const protocol::TimeoutError*>(&error) != nullptr) {
     message = "server " + label() + " did not answer while " + doing + " (" + error.what() +
               "); it is hung or too slow: raise run.deadline_s if it is only slow";
@@ -114,7 +120,7 @@ void Participant::hello(std::chrono::milliseconds deadline) {
                                std::string(protocol::authentication::kKeyFileVariable) + " (it printed no '" +
                                std::string(protocol::authentication::kAnnouncement) +
                                "' line): it would answer any process on this host. A 1.7 server must authenticate (protocol/SPEC.md §2.1)");
-    if (!hello_.heartbeat_endpoint.empty()) client_->connection().watch_heartbeat(*context_, hello_.heartbeat_endpoint, hang_timeout_);
+    if (!hello_.heartbeat_endpoint.empty()) client_->connection().watch_heartbeat(*context_, hello_.heartbeat_endpoint, hang_);
   } catch (const std::exception& e) {
     fail(e, "greeting it (hello)");
   }

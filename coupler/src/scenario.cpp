@@ -216,6 +216,7 @@ Scenario parse_scenario(const nlohmann::json& document, const fs::path& source, 
   scenario.run.exchanges = run.integer("exchanges");
   scenario.run.deadline_s = run.number("deadline_s");
   scenario.run.hang_timeout_s = run.number("hang_timeout_s");
+  scenario.run.stall_timeout_s = run.number("stall_timeout_s");
   scenario.run.startup_timeout_s = run.number("startup_timeout_s");
   scenario.run.snapshot_every = run.integer("snapshot_every");
   scenario.run.checkpoint_every = run.integer("checkpoint_every");

@@ -1,7 +1,9 @@
 // SPEC.md §9.1 (1.6): hello_ok announces a heartbeat endpoint beside the main
 // one; it answers ping with pong, whose body counts the requests the main
 // socket has answered, and refuses every other type. For servers that
-// declare 1.6 or later (Check::since_minor); older ones are skipped.
+// declare 1.6 or later (Check::since_minor); older ones are skipped. From
+// 1.8 every pong carries `progress`, the main thread's work counter, which
+// never decreases (heartbeat.progress; skipped for a server declaring 1.7 or older).
 #include "announced_heartbeat.hpp"
 #include "check.hpp"
 #include "context.hpp"
@@ -74,6 +76,27 @@ void heartbeat_answers_ping(Context& context) {
   expect(after > before, "the heartbeat's pong still says " + std::to_string(after) + " requests handled after one more was answered");
 }
 
+std::int64_t progress_in(const protocol::Message& pong) {
+  const auto it = pong.body.find(heartbeat::progress_key);
+  expect(it != pong.body.end() && it->is_number_integer() && it->get<std::int64_t>() >= 0,
+         "the pong of a 1." + std::to_string(heartbeat::kProgressSinceMinor) +
+             " server needs body.progress, an integer >= 0 (the work its main thread has done, SPEC.md §9.1), got " + pong.body.dump());
+  return it->get<std::int64_t>();
+}
+
+void heartbeat_reports_progress(Context& context) {
+  protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat", protocol::Limits{}, context.server_key());
+  std::int64_t before = progress_in(ping_heartbeat(context, connection));
+  // Around requests of the main socket and back to back: the counter never goes back.
+  for (int round = 0; round < 3; ++round) {
+    context.expect_alive();
+    const std::int64_t after = progress_in(ping_heartbeat(context, connection));
+    expect(after >= before, "the heartbeat's progress went back from " + std::to_string(before) + " to " + std::to_string(after) +
+                                "; it counts the main thread's work and never decreases (SPEC.md §9.1)");
+    before = after;
+  }
+}
+
 void heartbeat_refuses_other_types(Context& context) {
   protocol::Connection connection(context.zmq_context(), announced_endpoint(context), "the heartbeat", protocol::Limits{}, context.server_key());
   expect_error(ping_heartbeat(context, connection, protocol::type::query), {"UNKNOWN_TYPE"});
@@ -89,6 +112,8 @@ std::vector<Check> heartbeat_checks() {
        since},
       {"heartbeat.pong", "the heartbeat answers ping with pong counting the requests the main socket answered (1.6)", M::greeted, M::none,
        true, heartbeat_answers_ping, since},
+      {"heartbeat.progress", "every pong carries progress, an integer that never decreases (1.8)", M::greeted, M::none, true,
+       heartbeat_reports_progress, heartbeat::kProgressSinceMinor},
       {"heartbeat.other_types_refused", "the heartbeat answers any other request with UNKNOWN_TYPE (1.6)", M::greeted, M::none, true,
        heartbeat_refuses_other_types, since},
   };

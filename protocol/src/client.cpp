@@ -1,7 +1,6 @@
 #include "dfc/protocol/client.hpp"
 
-#include <cstdio>
-
+#include "dfc/common/durations.hpp"
 #include "dfc/common/echo.hpp"
 #include "dfc/common/version.hpp"
 #include "dfc/protocol/authentication.hpp"
@@ -14,12 +13,6 @@ namespace {
 constexpr auto kSlice = std::chrono::milliseconds(100);
 
 std::string shape_mismatch(const std::string& label, const std::string& what) { return label + " sent " + what; }
-
-std::string format_seconds(std::chrono::milliseconds duration) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g s", static_cast<double>(duration.count()) / 1000.0);
-  return text;
-}
 }  // namespace
 
 Connection::Connection(zmq::context_t& context, const std::string& endpoint, std::string label, Limits limits,
@@ -30,10 +23,10 @@ Connection::Connection(zmq::context_t& context, const std::string& endpoint, std
   socket_.connect(endpoint);
 }
 
-void Connection::watch_heartbeat(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout) {
+void Connection::watch_heartbeat(zmq::context_t& context, const std::string& endpoint, HangTimeouts timeouts) {
   if (const auto problem = endpoint_problem(endpoint))
     throw RemoteError("BAD_MESSAGE", label_ + " announced a heartbeat_endpoint that is no endpoint: " + *problem + " (SPEC.md §9.1)", "");
-  heartbeat_.emplace(context, heartbeat::connect_endpoint(endpoint, endpoint_), hang_timeout, server_key_);
+  heartbeat_.emplace(context, heartbeat::connect_endpoint(endpoint, endpoint_), timeouts, server_key_);
 }
 
 std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline) {
@@ -42,8 +35,11 @@ std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, 
   if (heartbeat_) heartbeat_->begin_wait();
   while (true) {
     if (wait_hook_) wait_hook_();
-    if (heartbeat_ && !heartbeat_->poll())
-      throw HungError(label_, "no reply, and " + heartbeat_->silence_description());
+    if (heartbeat_) {
+      const Liveliness liveliness = heartbeat_->poll();
+      if (liveliness == Liveliness::silent) throw HungError(label_, HungError::Kind::silent, "no reply, and " + heartbeat_->silence_description());
+      if (liveliness == Liveliness::stalled) throw HungError(label_, HungError::Kind::stalled, "no reply, and " + heartbeat_->stall_description());
+    }
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
     if (left.count() <= 0) return std::nullopt;
     auto frames = receive_frames(socket_, std::min(left, std::chrono::milliseconds(kSlice)));
@@ -61,7 +57,7 @@ Message Connection::request_raw(Message request, std::chrono::milliseconds deadl
   send_message(socket_, request);
   auto reply = await_reply(request.seq, deadline);
   if (!reply) {
-    std::string why = label_ + " did not answer '" + request.type + "' (seq " + std::to_string(request.seq) + ") within " + format_seconds(deadline);
+    std::string why = label_ + " did not answer '" + request.type + "' (seq " + std::to_string(request.seq) + ") within " + seconds_text(deadline);
     if (!skipped_reply_to_.empty()) {
       why += "; it did send " + std::to_string(skipped_reply_to_.size()) + " repl" + (skipped_reply_to_.size() == 1 ? "y" : "ies") +
              " with reply_to " + std::to_string(skipped_reply_to_.back()) +

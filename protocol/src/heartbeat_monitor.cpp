@@ -23,12 +23,12 @@ double seconds_between(std::chrono::steady_clock::time_point from, std::chrono::
 }
 }  // namespace
 
-HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout,
+HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& endpoint, HangTimeouts timeouts,
                                    const std::optional<std::string>& server_key)
     : socket_(context, zmq::socket_type::dealer),
       endpoint_(endpoint),
-      hang_timeout_(std::max(hang_timeout, std::chrono::milliseconds(1))),
-      interval_(std::clamp(hang_timeout_ / 4, std::chrono::milliseconds(1), kLongestInterval)) {
+      timeouts_{std::max(timeouts.silence, std::chrono::milliseconds(1)), std::max(timeouts.stall, std::chrono::milliseconds(1))},
+      interval_(std::clamp(timeouts_.silence / 4, std::chrono::milliseconds(1), kLongestInterval)) {
   configure_socket(socket_, heartbeat::message_limits());
   // A ping never blocks the wait: to a server that reads none, pings pile up
   // to the high-water mark and the next ones are dropped, not waited on.
@@ -43,6 +43,7 @@ void HeartbeatMonitor::begin_wait() {
   // exchange (microseconds) cost no ping and no system call at all.
   last_ping_ = last_life_;
   first_seq_of_wait_ = next_seq_;
+  progress_.reset();  // the counter moved while the client worked, or not: this wait judges only what it sees
 }
 
 void HeartbeatMonitor::read_pongs(Clock::time_point now) {
@@ -56,11 +57,19 @@ void HeartbeatMonitor::read_pongs(Clock::time_point now) {
     if (pong.type != type::pong || !pong.reply_to) continue;
     ever_answered_ = true;
     last_pong_body_ = pong.body;
-    if (*pong.reply_to >= first_seq_of_wait_) last_life_ = now;
+    if (*pong.reply_to < first_seq_of_wait_) continue;
+    last_life_ = now;
+    const auto progress = pong.body.find(heartbeat::progress_key);
+    if (progress == pong.body.end() || !progress->is_number_integer()) continue;  // a server before 1.8: the silence rule alone
+    const auto value = progress->get<std::int64_t>();
+    if (!progress_ || value != *progress_) {
+      progress_ = value;
+      progress_since_ = now;
+    }
   }
 }
 
-bool HeartbeatMonitor::poll() {
+Liveliness HeartbeatMonitor::poll() {
   const auto now = Clock::now();
   if (next_seq_ > first_seq_of_wait_) read_pongs(now);  // only a ping of this wait can be answered now
   if (now - last_ping_ >= interval_) {
@@ -70,21 +79,34 @@ bool HeartbeatMonitor::poll() {
     send_message(socket_, ping);
     last_ping_ = now;
   }
-  return now - last_life_ < hang_timeout_;
+  if (now - last_life_ >= timeouts_.silence) return Liveliness::silent;
+  if (progress_ && now - progress_since_ >= timeouts_.stall) return Liveliness::stalled;
+  return Liveliness::alive;
 }
 
-std::string HeartbeatMonitor::silence_description() const {
-  std::string text = "no pong from its heartbeat (" + endpoint_ + ") for " + seconds_text(seconds_between(last_life_, Clock::now()));
-  if (!ever_answered_) return text + ", nor ever before";
+std::string HeartbeatMonitor::last_pong_account(const std::string& pong) const {
   const auto number = [&](std::string_view key) -> std::string {
     const auto it = last_pong_body_.find(key);
     return it != last_pong_body_.end() && it->is_number() ? it->dump() : "?";
   };
   // Appended piece by piece: "literal" + std::string temporaries trip GCC 12's -Wrestrict (a false positive).
-  text.append("; the last one said ").append(number(heartbeat::handled_key)).append(" requests handled, step ").append(number(heartbeat::step_key));
+  std::string text;
+  text.append("; the last ").append(pong).append(" said ").append(number(heartbeat::handled_key)).append(" requests handled, step ").append(number(heartbeat::step_key));
   const auto busy = last_pong_body_.find(heartbeat::busy_key);
   if (busy != last_pong_body_.end() && busy->is_number()) text.append(", busy for ").append(seconds_text(busy->get<double>()));
   return text;
+}
+
+std::string HeartbeatMonitor::silence_description() const {
+  std::string text = "no pong from its heartbeat (" + endpoint_ + ") for " + seconds_text(seconds_between(last_life_, Clock::now()));
+  if (!ever_answered_) return text + ", nor ever before";
+  return text + last_pong_account("one");
+}
+
+std::string HeartbeatMonitor::stall_description() const {
+  std::string text = "its heartbeat (" + endpoint_ + ") answers, but its progress";
+  if (progress_) text.append(" stood at ").append(std::to_string(*progress_)).append(" for ").append(seconds_text(seconds_between(progress_since_, Clock::now())));
+  return text + last_pong_account("pong");
 }
 
 }  // namespace dfc::protocol

@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "dfc/common/work_progress.hpp"
 #include "dfc/protocol/heartbeat.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -32,6 +33,7 @@ Message answer(std::span<const std::span<const std::byte>> frames, const Limits&
   pong.body = {{heartbeat::handled_key, liveness.handled()},
                {heartbeat::step_key, liveness.step()},
                {heartbeat::busy_key, busy < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(busy)}};
+  if (liveness.reports_progress()) pong.body[heartbeat::progress_key] = work_progress::current();
   return pong;
 }
 

@@ -163,7 +163,7 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
   // Declared after the context and the socket, so destroyed before them on
   // every path out of here (return or exception): its thread stops and joins
   // first, and the context's termination never waits for its socket.
-  Liveness liveness;
+  Liveness liveness(program.declared_minor >= heartbeat::kProgressSinceMinor && program.progress);
   const auto heartbeat = start_heartbeat(context, endpoint, program, liveness, session.version(), keys);
   if (heartbeat) session.set_heartbeat_endpoint(heartbeat->endpoint());
   if (keys) std::cout << authentication::kAnnouncement << "\n";

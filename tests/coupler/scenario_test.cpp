@@ -136,24 +136,33 @@ TEST(Scenario, DurationsStepsAndTimeStepsAreBounded) {
   EXPECT_EQ(with("coupling", "dt_s", 1e-7), "(no error)");
 }
 
-// Issue 42: run.hang_timeout_s, how long a server may answer neither its
-// request nor a heartbeat ping, is a declared key: 10 s by default, > 0, and
-// a bad value is refused naming the key.
-TEST(Scenario, HangTimeoutIsDeclaredPositiveAndTenSecondsByDefault) {
-  EXPECT_DOUBLE_EQ(parse_scenario(minimal(), "scenario.json", "").run.hang_timeout_s, 10.0);
+/// A wait of run.* declared in seconds: `fallback` by default, a positive
+/// value taken, a bad one (0, negative, beyond 1e6 s, not a number) refused naming the key.
+void expect_declared_wait(const std::string& key, double fallback, double RunSpec::*field) {
+  EXPECT_DOUBLE_EQ(parse_scenario(minimal(), "scenario.json", "").run.*field, fallback) << key;
   auto d = minimal();
-  d["run"]["hang_timeout_s"] = 2.5;
-  EXPECT_DOUBLE_EQ(parse_scenario(d, "scenario.json", "").run.hang_timeout_s, 2.5);
+  d["run"][key] = 2.5;
+  EXPECT_DOUBLE_EQ(parse_scenario(d, "scenario.json", "").run.*field, 2.5) << key;
   for (const nlohmann::json& bad : {nlohmann::json(0), nlohmann::json(-1), nlohmann::json(1e10), nlohmann::json("10")}) {
-    d["run"]["hang_timeout_s"] = bad;
+    d["run"][key] = bad;
     try {
       (void)parse_scenario(d, "scenario.json", "");
-      ADD_FAILURE() << "hang_timeout_s " << bad.dump() << " was accepted";
+      ADD_FAILURE() << key << " " << bad.dump() << " was accepted";
     } catch (const ConfigError& e) {
-      EXPECT_EQ(e.key_path(), "run.hang_timeout_s") << bad.dump();
-      EXPECT_NE(std::string(e.what()).find("hang_timeout_s"), std::string::npos) << e.what();
+      EXPECT_EQ(e.key_path(), "run." + key) << bad.dump();
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
     }
   }
+}
+
+// Issue 42: run.hang_timeout_s, how long a server may answer neither its
+// request nor a heartbeat ping, is a declared key: 10 s by default.
+TEST(Scenario, HangTimeoutIsDeclaredPositiveAndTenSecondsByDefault) { expect_declared_wait("hang_timeout_s", 10.0, &RunSpec::hang_timeout_s); }
+
+// Issue 42: run.stall_timeout_s, how long a server's pongs may say the same
+// progress (SPEC.md §9.1, 1.8), is a declared key: 120 s by default.
+TEST(Scenario, StallTimeoutIsDeclaredPositiveAndTwoMinutesByDefault) {
+  expect_declared_wait("stall_timeout_s", 120.0, &RunSpec::stall_timeout_s);
 }
 
 TEST(Scenario, NamesAndOutputFoldersThatWouldOverwriteInputsAreRefused) {

@@ -133,9 +133,9 @@ struct CoupledPair {
         dem_server(context, dem_backend),
         continuum_server(context, continuum_backend),
         dem(context, {"dem", "scripted_dem", {}, {}, dem_server.endpoint(), nlohmann::json::object(), {}}, std::filesystem::temp_directory_path(),
-            5s, 10s, stop),
+            5s, {10s, 120s}, stop),
         continuum(context, {"continuum", "scripted_continuum", {}, {}, continuum_server.endpoint(), nlohmann::json::object(), {}},
-                  std::filesystem::temp_directory_path(), 5s, 10s, stop) {
+                  std::filesystem::temp_directory_path(), 5s, {10s, 120s}, stop) {
     for (Participant* p : {&dem, &continuum}) {
       p->hello(5s);
       (void)p->configure(5s);

@@ -1,8 +1,10 @@
 // Hang detection (issue 42 part 4, SPEC.md §9.1): a server stopped mid-run
 // (SIGSTOP: a frozen node, a process swapped out) ends the run within seconds,
-// naming it, although run.deadline_s is 30 min; a slow server that answers its
-// heartbeat is never declared hung, and a server of an older minor, which has
-// no heartbeat, still runs.
+// naming it, although run.deadline_s is 30 min; so does (1.8) one whose main
+// thread deadlocked while its heartbeat thread still answers, once its work
+// counter has stood still for run.stall_timeout_s. A slow server that answers
+// its heartbeat and progresses is never declared hung, and a server of an
+// older minor, which has no heartbeat or no counter, still runs.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -105,6 +107,45 @@ TEST(HangDetection, SlowAdvanceAnsweringItsHeartbeatIsNotHung) {
   EXPECT_EQ(result.exit_status, 0) << result.output;
   EXPECT_GE(result.seconds, 3.0) << result.output;
   EXPECT_EQ(result.output.find("stopped answering"), std::string::npos) << result.output;
+}
+
+// A main thread blocked for good inside an advance while the heartbeat thread
+// answers: before 1.8 only the deadline (30 min here) found it; now its pongs'
+// progress stands still and the run ends after run.stall_timeout_s, naming it.
+TEST(HangDetection, DeadlockedMainThreadIsNamedWithinTheStallTimeout) {
+  const CommandResult result = run_fixture("hang_deadlock", {{"side", 2}, {"interface", false}}, {"--break", "deadlock-advance"},
+                                           {{"exchanges", 3}, {"deadline_s", 1800}, {"stall_timeout_s", 2}});
+  EXPECT_EQ(result.exit_status, 1) << result.output;
+  EXPECT_GE(result.seconds, 2.0) << result.output;
+  EXPECT_LT(result.seconds, 10.0) << result.output;  // the stall timeout, a ping interval, start-up and stop
+  EXPECT_NE(result.output.find("server continuum (conformance_fixture_server, pid "), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("answers but makes no progress while advancing"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("but its progress stood at "), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("longer than 2 s without a step, raise run.stall_timeout_s"), std::string::npos) << result.output;  // the fix
+  EXPECT_EQ(result.output.find("stopped answering"), std::string::npos) << result.output;  // stalled, not silent
+}
+
+// An advance of 3 s, three times run.stall_timeout_s, whose main thread moves
+// the work counter every 0.1 s (as a solver's steps do): it is not stalled.
+TEST(HangDetection, SlowAdvanceThatProgressesIsNotStalled) {
+  const CommandResult result = run_fixture("hang_slow_progressing", {{"side", 2}, {"interface", false}, {"advance_s", 3.0}},
+                                           nlohmann::json::array(), {{"exchanges", 1}, {"deadline_s", 30}, {"stall_timeout_s", 1}});
+  EXPECT_EQ(result.exit_status, 0) << result.output;
+  EXPECT_GE(result.seconds, 3.0) << result.output;
+  EXPECT_EQ(result.output.find("makes no progress"), std::string::npos) << result.output;
+}
+
+// A server of protocol 1.7 sends no progress in its pongs: it is held to the
+// silence rule alone, so even its deadlocked advance runs to the deadline.
+TEST(HangDetection, ServerOfProtocol1_7IsNotHeldToTheStallRule) {
+  const CommandResult result = run_fixture("hang_protocol_1_7", {{"side", 2}, {"interface", false}},
+                                           {"--protocol-minor", "7", "--break", "deadlock-advance"},
+                                           {{"exchanges", 1}, {"deadline_s", 4}, {"stall_timeout_s", 1}});
+  EXPECT_EQ(result.exit_status, 1) << result.output;
+  EXPECT_GE(result.seconds, 4.0) << result.output;
+  EXPECT_NE(result.output.find("server continuum (conformance_fixture_server, pid "), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("did not answer while advancing"), std::string::npos) << result.output;  // the deadline's message
+  EXPECT_EQ(result.output.find("makes no progress"), std::string::npos) << result.output;
 }
 
 // A server of protocol 1.5 announces no heartbeat: only the deadline applies,

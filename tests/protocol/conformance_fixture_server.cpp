@@ -1,9 +1,10 @@
 // conformance_fixture_server: a protocol v1 server around FixtureBackend,
 // for the tests of dfc_conformance and the coupler. `--break throw|shape|crash|hang|
-// no-force-monitor|nan-velocity|huge-particle-count|unsent-progress-monitor|malformed-progress-monitors|no-heartbeat|no-authentication|accept-surplus-input` makes it misbehave on purpose; every other option is the generic
+// no-force-monitor|nan-velocity|huge-particle-count|unsent-progress-monitor|malformed-progress-monitors|no-heartbeat|no-authentication|accept-surplus-input|
+// deadlock-advance|no-progress` makes it misbehave on purpose; every other option is the generic
 // server's (--bind, --help, --version, ...). `--protocol-minor N` makes it
 // declare 1.N instead of the current minor and behave as a server of that
-// version where the rules differ (SPEC.md §1): below 1.7 no authentication, below 1.6 no heartbeat, below
+// version where the rules differ (SPEC.md §1): below 1.8 no progress in the pongs, below 1.7 no authentication, below 1.6 no heartbeat, below
 // 1.5 no progress_monitors, below 1.3 checkpoint is UNKNOWN_TYPE, below 1.2
 // no monitor_units, below 1.1 surplus input arrays are ignored.
 #include <cstdlib>
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--break") == 0 && i + 1 < argc) {
       const auto parsed = dfc::protocol::testing::breakage_from_name(argv[++i]);
       if (!parsed) {
-        std::cerr << "conformance_fixture_server: --break takes throw, shape, crash, hang, no-force-monitor, nan-velocity, huge-particle-count, unsent-progress-monitor, malformed-progress-monitors, no-heartbeat, no-authentication or accept-surplus-input, not '" << argv[i] << "'\n";
+        std::cerr << "conformance_fixture_server: --break takes throw, shape, crash, hang, no-force-monitor, nan-velocity, huge-particle-count, unsent-progress-monitor, malformed-progress-monitors, no-heartbeat, no-authentication, accept-surplus-input, deadlock-advance or no-progress, not '" << argv[i] << "'\n";
         return 2;
       }
       breakage = *parsed;
@@ -50,5 +51,6 @@ int main(int argc, char** argv) {
   program.declared_minor = declared_minor;
   program.heartbeat = breakage != Breakage::no_heartbeat;  // the generic server runs it, not the backend
   program.authentication = breakage != Breakage::no_authentication;
+  program.progress = breakage != Breakage::no_progress;
   return dfc::protocol::run_server_main(static_cast<int>(server_args.size() - 1), server_args.data(), program);
 }

@@ -2,7 +2,9 @@
 
 #include <array>
 #include <chrono>
+#include <algorithm>
 #include <cstdlib>
+#include <future>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -10,6 +12,7 @@
 #include "dfc/common/config_reader.hpp"
 #include "dfc/common/unstable_step_error.hpp"
 #include "dfc/common/version.hpp"
+#include "dfc/common/work_progress.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 #include "dfc/protocol/progress_monitors.hpp"
 #include "square_grid_mesh.hpp"
@@ -19,6 +22,7 @@ namespace dfc::protocol::testing {
 namespace {
 constexpr double kNodeMass = 1.0;  // kg, before any lumped mass from the other side
 constexpr double kDtMax = 1e-2;    // s, the stability limit the fixture announces and enforces (SPEC.md §5.2)
+constexpr auto kWorkSlice = std::chrono::milliseconds(100);  // a slow advance's "step": one progress bump
 }
 
 std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
@@ -34,6 +38,8 @@ std::optional<Breakage> breakage_from_name(std::string_view name) noexcept {
   if (name == "no-heartbeat") return Breakage::no_heartbeat;
   if (name == "no-authentication") return Breakage::no_authentication;
   if (name == "accept-surplus-input") return Breakage::accepts_surplus_input;
+  if (name == "deadlock-advance") return Breakage::deadlock_in_advance;
+  if (name == "no-progress") return Breakage::no_progress;
   return std::nullopt;
 }
 
@@ -73,6 +79,12 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::throw_in_advance: throw std::runtime_error("deliberately broken fixture: advance throws");
     case Breakage::crash_in_advance: std::abort();
     case Breakage::hang_in_advance: std::this_thread::sleep_for(std::chrono::hours(1)); break;
+    case Breakage::deadlock_in_advance: {
+      // Waits for a promise nobody keeps: no work, no progress, while the heartbeat thread answers.
+      std::promise<void> never_kept;
+      never_kept.get_future().wait();
+      break;
+    }
     case Breakage::none:
     case Breakage::wrong_output_shape:
     case Breakage::no_force_monitor:
@@ -82,11 +94,18 @@ AdvanceResult FixtureBackend::advance(const AdvanceRequest& request) {
     case Breakage::malformed_progress_monitors:
     case Breakage::no_heartbeat:
     case Breakage::no_authentication:
-    case Breakage::accepts_surplus_input: break;
+    case Breakage::accepts_surplus_input:
+    case Breakage::no_progress: break;
   }
   if (request.dt > kDtMax) throw UnstableStepError("dt exceeds the fixture's stability limit", kDtMax);  // before anything changes
-  // A slow solver: the main thread is busy, the heartbeat thread answers (SPEC.md §9.1).
-  if (advance_seconds_ > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(advance_seconds_));
+  // A slow solver: the main thread is busy, the heartbeat thread answers and,
+  // as a real solver's steps do, the work counter moves every 0.1 s (SPEC.md §9.1).
+  const std::chrono::steady_clock::time_point slow_until =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(advance_seconds_));
+  while (std::chrono::steady_clock::now() < slow_until) {
+    std::this_thread::sleep_until(std::min(slow_until, std::chrono::steady_clock::now() + kWorkSlice));
+    work_progress::advance();
+  }
   const std::int64_t n = mesh_.node_count();
   // A 1.0 server ignores input arrays it does not take (SPEC.md §1, 1.1).
   if (declared_minor_ >= 1 && breakage_ != Breakage::accepts_surplus_input) {

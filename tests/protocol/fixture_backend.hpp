@@ -25,10 +25,14 @@ enum class Breakage {
   malformed_progress_monitors,  ///< configure's info.progress_monitors is not an array
   no_heartbeat,                 ///< declares the current minor but runs no heartbeat (SPEC.md §9.1)
   no_authentication,            ///< declares the current minor but ignores DFC_KEY_FILE (SPEC.md §2.1)
-  accepts_surplus_input         ///< advances despite an input array it does not take (SPEC.md §6.1, 1.1)
+  accepts_surplus_input,        ///< advances despite an input array it does not take (SPEC.md §6.1, 1.1)
+  deadlock_in_advance,          ///< advance blocks forever, doing no work, while the heartbeat answers (SPEC.md §9.1, 1.8)
+  no_progress                   ///< declares the current minor but its pongs carry no progress (SPEC.md §9.1, 1.8)
 };
 
-/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor", "malformed-progress-monitors", "no-heartbeat", "no-authentication", "accept-surplus-input"; nullopt for anything else.
+/// "throw", "shape", "crash", "hang", "no-force-monitor", "nan-velocity", "huge-particle-count", "unsent-progress-monitor",
+/// "malformed-progress-monitors", "no-heartbeat", "no-authentication", "accept-surplus-input", "deadlock-advance",
+/// "no-progress"; nullopt for anything else.
 [[nodiscard]] std::optional<Breakage> breakage_from_name(std::string_view name) noexcept;
 
 class FixtureBackend final : public SolverBackend {

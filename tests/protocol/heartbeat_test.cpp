@@ -1,10 +1,13 @@
 // The heartbeat (SPEC.md §9.1, protocol 1.6): where it binds and connects, a
 // responder that answers while the main thread is busy, and a monitor that
-// tells a silent server from a busy one.
+// tells a silent server from a busy one, and (1.8) a stalled one, whose pongs
+// come but whose progress stands still, from one that works.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <thread>
 
+#include "dfc/common/work_progress.hpp"
 #include "dfc/protocol/client.hpp"
 #include "dfc/protocol/heartbeat.hpp"
 #include "dfc/protocol/heartbeat_monitor.hpp"
@@ -56,6 +59,10 @@ TEST(HeartbeatResponder, AnswersWhileTheMainThreadIsBusyAndCountsItsRequests) {
   EXPECT_EQ(idle.body["handled"], 1);
   EXPECT_EQ(idle.body["step"], 42);
   EXPECT_TRUE(idle.body["busy_s"].is_null());
+  // 1.8: the main thread's work counter, the process's.
+  work_progress::advance();
+  ASSERT_TRUE(idle.body["progress"].is_number_integer()) << idle.body;
+  EXPECT_GT(ping(connection).body["progress"].get<std::int64_t>(), idle.body["progress"].get<std::int64_t>());
 
   Message other;
   other.type = std::string(type::advance);
@@ -73,33 +80,81 @@ TEST(HeartbeatResponder, StopsPromptlyWhenDestroyed) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
 }
 
-/// Polls `monitor` for `how_long` (as a client's wait does, every 10 ms); false once it reports the server hung.
-bool stays_alive(HeartbeatMonitor& monitor, std::chrono::milliseconds how_long) {
+/// Polls `monitor` for `how_long` (as a client's wait does, every 10 ms) or
+/// until it reports the server hung; returns what the last poll found.
+Liveliness poll_for(HeartbeatMonitor& monitor, std::chrono::milliseconds how_long) {
   monitor.begin_wait();
   const auto until = std::chrono::steady_clock::now() + how_long;
   while (std::chrono::steady_clock::now() < until) {
-    if (!monitor.poll()) return false;
+    if (const Liveliness found = monitor.poll(); found != Liveliness::alive) return found;
     std::this_thread::sleep_for(10ms);
   }
-  return true;
+  return Liveliness::alive;
 }
+
+constexpr auto kNoStallRule = std::chrono::hours(1);
 
 TEST(HeartbeatMonitor, ABusyServerThatAnswersIsAlive) {
   zmq::context_t context(1);
   Liveness liveness;
   HeartbeatResponder responder(context, "inproc://answering.heartbeat", liveness, "1.6", std::nullopt);
   liveness.begin_request();
-  HeartbeatMonitor monitor(context, responder.endpoint(), 200ms, std::nullopt);
-  EXPECT_TRUE(stays_alive(monitor, 800ms));  // four hang timeouts, busy all along
+  HeartbeatMonitor monitor(context, responder.endpoint(), {200ms, kNoStallRule}, std::nullopt);
+  EXPECT_EQ(poll_for(monitor, 800ms), Liveliness::alive);  // four hang timeouts, busy all along
+}
+
+// A main thread that deadlocked: the heartbeat answers, the progress stands still.
+TEST(HeartbeatMonitor, AServerWhoseProgressStandsStillIsStalledAfterTheStallTimeout) {
+  zmq::context_t context(1);
+  Liveness liveness;
+  HeartbeatResponder responder(context, "inproc://stalled.heartbeat", liveness, "1.8", std::nullopt);
+  liveness.begin_request();
+  HeartbeatMonitor monitor(context, responder.endpoint(), {200ms, 400ms}, std::nullopt);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(poll_for(monitor, 3s), Liveliness::stalled);
+  const auto waited = std::chrono::steady_clock::now() - start;
+  EXPECT_GE(waited, 400ms);
+  EXPECT_LT(waited, 1500ms);  // the stall is counted from the first pong, one ping interval (50 ms) into the wait
+  const std::string description = monitor.stall_description();
+  EXPECT_NE(description.find("its heartbeat (inproc://stalled.heartbeat) answers, but its progress stood at "), std::string::npos) << description;
+  EXPECT_NE(description.find("busy for"), std::string::npos) << description;
+}
+
+// A slow request whose main thread bumps the counter is never stalled, however long it takes.
+TEST(HeartbeatMonitor, AServerWhoseProgressMovesIsNotStalled) {
+  zmq::context_t context(1);
+  Liveness liveness;
+  HeartbeatResponder responder(context, "inproc://progressing.heartbeat", liveness, "1.8", std::nullopt);
+  liveness.begin_request();
+  std::atomic<bool> working{true};
+  std::jthread main_thread([&] {
+    while (working.load()) {
+      work_progress::advance();
+      std::this_thread::sleep_for(20ms);
+    }
+  });
+  HeartbeatMonitor monitor(context, responder.endpoint(), {200ms, 200ms}, std::nullopt);
+  EXPECT_EQ(poll_for(monitor, 1s), Liveliness::alive);  // five stall timeouts
+  working = false;
+}
+
+// A server before 1.8 sends no progress: only the silence rule holds it.
+TEST(HeartbeatMonitor, AServerWithoutProgressIsNeverStalled) {
+  zmq::context_t context(1);
+  Liveness liveness(false);
+  HeartbeatResponder responder(context, "inproc://older.heartbeat", liveness, "1.7", std::nullopt);
+  liveness.begin_request();
+  HeartbeatMonitor monitor(context, responder.endpoint(), {200ms, 100ms}, std::nullopt);
+  EXPECT_EQ(poll_for(monitor, 800ms), Liveliness::alive);
 }
 
 TEST(HeartbeatMonitor, AServerThatAnswersNoPingIsHungAfterTheTimeout) {
   zmq::context_t context(1);
   zmq::socket_t silent(context, zmq::socket_type::router);  // receives the pings, answers none
   silent.bind("inproc://silent.heartbeat");
-  HeartbeatMonitor monitor(context, "inproc://silent.heartbeat", 200ms, std::nullopt);
+  HeartbeatMonitor monitor(context, "inproc://silent.heartbeat", {200ms, 100ms}, std::nullopt);
   const auto start = std::chrono::steady_clock::now();
-  EXPECT_FALSE(stays_alive(monitor, 2s));
+  EXPECT_EQ(poll_for(monitor, 2s), Liveliness::silent);  // silent, not stalled: no pong says anything about progress
   const auto waited = std::chrono::steady_clock::now() - start;
   EXPECT_GE(waited, 200ms);
   EXPECT_LT(waited, 1s);

@@ -100,6 +100,11 @@ const SectionDeclaration& scenario_run() {
                                "(servers of protocol 1.6 on; SPEC.md §9.1)")
                          .within(kWait)
                          .fallback(10.0),
+                     P::number("stall_timeout_s", "s",
+                               "a server whose heartbeat answers but whose work counter stands still this long (its main thread "
+                               "deadlocked or spinning) is hung, however long deadline_s (servers of protocol 1.8 on; SPEC.md §9.1)")
+                         .within(kWait)
+                         .fallback(120.0),
                      P::number("startup_timeout_s", "s", "longest wait for a server to start").within(kWait).fallback(20.0),
                      P::integer("snapshot_every", "exchanges between snapshots (0: first and last only)").integer_within(0).fallback(0),
                      P::integer("checkpoint_every", "exchanges between checkpoints for --resume (0: none but on Ctrl-C)").integer_within(0).fallback(0),

@@ -6,6 +6,7 @@
 // wait the user sets is bounded by kLongestWaitSeconds where it is read, and
 // converted here, saturating, so no conversion can overflow.
 #include <chrono>
+#include <string>
 
 namespace dfc {
 
@@ -16,5 +17,8 @@ inline constexpr double kLongestWaitSeconds = 1e6;
 /// `seconds` as milliseconds, rounded up, clamped to [0, kLongestWaitSeconds]
 /// (NaN gives 0).
 [[nodiscard]] std::chrono::milliseconds milliseconds_from_seconds(double seconds) noexcept;
+
+/// A wait for messages, in the seconds the user gave it: "2 s", "0.5 s", "1800 s".
+[[nodiscard]] std::string seconds_text(std::chrono::milliseconds duration);
 
 }  // namespace dfc

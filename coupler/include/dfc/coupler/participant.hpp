@@ -65,9 +65,10 @@ class Participant {
   /// scenario names one. Server logs go to `log_dir`.
   /// Every wait for it gives up through `stop` (which must outlive this), and,
   /// once it announced a heartbeat (SPEC.md §9.1), when it has answered
-  /// neither the request nor a ping for `hang_timeout` (run.hang_timeout_s).
+  /// neither the request nor a ping for `hang.silence` (run.hang_timeout_s),
+  /// or, from 1.8, its pongs' progress stood still for `hang.stall` (run.stall_timeout_s).
   Participant(zmq::context_t& context, const ParticipantSpec& spec, const std::filesystem::path& log_dir,
-              std::chrono::milliseconds startup_timeout, std::chrono::milliseconds hang_timeout, StopRequest& stop,
+              std::chrono::milliseconds startup_timeout, protocol::HangTimeouts hang, StopRequest& stop,
               const protocol::RunKeyFile* run_keys = nullptr);
 
   /// hello, then watches the heartbeat the server announced (none from a server
@@ -102,8 +103,8 @@ class Participant {
   ParticipantSpec spec_;
   StopRequest* stop_;
   zmq::context_t* context_;
-  std::chrono::milliseconds hang_timeout_;
-  bool hung_ = false;  ///< it stopped answering: stop() kills it at once
+  protocol::HangTimeouts hang_;
+  bool hung_ = false;  ///< it stopped answering or making progress: stop() kills it at once
   bool authenticated_ = false;  ///< connected with the server's key (SPEC.md §2.1)
   bool greeted_ = false;        ///< hello was answered
   std::unique_ptr<ChildProcess> process_;

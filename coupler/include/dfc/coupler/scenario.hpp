@@ -49,6 +49,8 @@ struct RunSpec {
   double deadline_s = 60.0;      ///< per request (SPEC.md §9)
   /// a server that answers neither its request nor a heartbeat ping this long is hung (SPEC.md §9.1)
   double hang_timeout_s = 10.0;
+  /// a server whose heartbeat answers but whose progress stands still this long is hung (SPEC.md §9.1, 1.8)
+  double stall_timeout_s = 120.0;
   double startup_timeout_s = 20; ///< for a started server to print DFC-LISTENING
   std::int64_t snapshot_every = 0;  ///< exchanges between snapshots; 0: initial and final only
   /// exchanges between coordinated checkpoints (docs/checkpoints.md); 0: none

@@ -23,17 +23,25 @@ class TimeoutError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Neither a reply nor a heartbeat pong within the hang timeout (SPEC.md §9.1):
-/// the server is alive as a process, perhaps, but stopped or frozen.
+/// The server is hung (SPEC.md §9.1): neither a reply nor a heartbeat pong
+/// within the silence timeout (silent: stopped or frozen), or pongs whose
+/// `progress` stood still for the stall timeout (stalled: its main thread
+/// deadlocked or spins while its heartbeat thread answers; servers of 1.8 on).
 class HungError : public TimeoutError {
  public:
-  /// what(): "<label> stopped answering: <silence>"; silence(): the heartbeat's account alone.
-  HungError(const std::string& label, std::string silence)
-      : TimeoutError(label + " stopped answering: " + silence), silence_(std::move(silence)) {}
-  [[nodiscard]] const std::string& silence() const noexcept { return silence_; }
+  enum class Kind { silent, stalled };
+  /// what(): "<label> stopped answering: <account>" or "<label> answers but
+  /// makes no progress: <account>"; account(): the heartbeat's account alone.
+  HungError(const std::string& label, Kind kind, std::string account)
+      : TimeoutError(label + (kind == Kind::silent ? " stopped answering: " : " answers but makes no progress: ") + account),
+        kind_(kind),
+        account_(std::move(account)) {}
+  [[nodiscard]] Kind kind() const noexcept { return kind_; }
+  [[nodiscard]] const std::string& account() const noexcept { return account_; }
 
  private:
-  std::string silence_;
+  Kind kind_;
+  std::string account_;
 };
 
 /// The server answered with an `error` message.
@@ -64,8 +72,9 @@ class Connection {
 
   /// From now on every wait pings the server's heartbeat at `endpoint` (SPEC.md
   /// §9.1) and ends with HungError once a ping has gone unanswered for
-  /// `hang_timeout` while no reply came. Without it only the deadline applies.
-  void watch_heartbeat(zmq::context_t& context, const std::string& endpoint, std::chrono::milliseconds hang_timeout);
+  /// `timeouts.silence`, or the pongs' progress stood still for
+  /// `timeouts.stall`, while no reply came. Without it only the deadline applies.
+  void watch_heartbeat(zmq::context_t& context, const std::string& endpoint, HangTimeouts timeouts);
   [[nodiscard]] bool heartbeat_watched() const noexcept { return heartbeat_.has_value(); }
 
   /// Sends `request` (its seq is assigned here) and returns the reply with the

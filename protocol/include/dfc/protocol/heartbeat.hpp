@@ -13,6 +13,10 @@ namespace dfc::protocol::heartbeat {
 
 /// The minor version (of major 1) from which a server announces a heartbeat.
 inline constexpr int kSinceMinor = 6;
+/// The minor version from which every pong carries `progress` (the main
+/// thread's work counter), and a client may declare a server whose counter
+/// stands still stalled.
+inline constexpr int kProgressSinceMinor = 8;
 
 /// hello_ok.body field: the endpoint of the heartbeat socket.
 inline constexpr std::string_view endpoint_key = "heartbeat_endpoint";
@@ -21,6 +25,7 @@ inline constexpr std::string_view endpoint_key = "heartbeat_endpoint";
 inline constexpr std::string_view handled_key = "handled";  ///< requests the main socket has answered so far
 inline constexpr std::string_view step_key = "step";        ///< the session's step after the last answered request
 inline constexpr std::string_view busy_key = "busy_s";      ///< s inside the request being handled now, null when idle
+inline constexpr std::string_view progress_key = "progress";  ///< 1.8: work done by the main thread, never decreasing
 
 /// What both ends of the heartbeat accept: a header alone (no arrays) of at
 /// most 64 KiB, so that nothing bigger is ever buffered.

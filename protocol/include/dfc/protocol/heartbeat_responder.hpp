@@ -2,7 +2,9 @@
 // The server's side of the heartbeat (SPEC.md §9.1, 1.6): a ROUTER socket of
 // its own, served by its own thread, that answers `ping` with `pong` whatever
 // the main thread is doing. A process that is stopped (SIGSTOP), frozen or
-// swapped out answers nothing; a busy one answers at once.
+// swapped out answers nothing; a busy one answers at once, and from 1.8 says
+// how far its main thread has got (dfc::work_progress), so that one whose
+// main thread deadlocked shows a counter that stands still.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -19,6 +21,10 @@ namespace dfc::protocol {
 /// main thread around each request, read by the heartbeat thread; no lock.
 class Liveness {
  public:
+  /// `reports_progress`: whether the pongs carry the process's work counter
+  /// (dfc::work_progress), as a server that declares 1.8 or later must.
+  explicit Liveness(bool reports_progress = true) noexcept : reports_progress_(reports_progress) {}
+
   /// A request arrived and its handling starts.
   void begin_request() noexcept;
   /// Its reply was sent; the session is at `step`.
@@ -28,8 +34,10 @@ class Liveness {
   [[nodiscard]] std::int64_t step() const noexcept { return step_.load(std::memory_order_relaxed); }
   /// Seconds inside the request being handled, or a negative number when idle.
   [[nodiscard]] double busy_seconds() const noexcept;
+  [[nodiscard]] bool reports_progress() const noexcept { return reports_progress_; }
 
  private:
+  bool reports_progress_;
   std::atomic<std::int64_t> handled_{0};
   std::atomic<std::int64_t> step_{0};
   std::atomic<std::int64_t> busy_since_ns_{-1};  ///< steady_clock, -1 when idle

@@ -15,7 +15,7 @@ namespace dfc::protocol {
 
 inline constexpr std::string_view kProtocolName = "dfc";
 inline constexpr int kVersionMajor = 1;
-inline constexpr int kVersionMinor = 7;
+inline constexpr int kVersionMinor = 8;
 /// Largest advance.n_steps (SPEC.md §4); the coupler's scenario keys that set
 /// steps per exchange are bounded by it, so `check` refuses what `run` would.
 inline constexpr std::int64_t kMaxStepsPerAdvance = 1'000'000'000;

@@ -24,6 +24,9 @@ struct ServerProgram {
   /// Whether a server declaring 1.6 or later runs its heartbeat; false only in
   /// a test fixture that breaks that rule on purpose.
   bool heartbeat = true;
+  /// Whether the pongs of a server declaring 1.8 or later carry `progress`
+  /// (SPEC.md §9.1); false only in a test fixture that breaks that rule on purpose.
+  bool progress = true;
   /// Whether a server declaring 1.7 or later uses the key file DFC_KEY_FILE
   /// names (SPEC.md §2.1); false only in a test fixture that breaks that rule on purpose.
   bool authentication = true;
