@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <iostream>
 #include <string_view>
@@ -17,6 +18,7 @@
 #include "dfc/protocol/heartbeat.hpp"
 #include "dfc/protocol/heartbeat_responder.hpp"
 #include "dfc/protocol/key_file.hpp"
+#include "dfc/protocol/progress_gap_probe.hpp"
 #include "dfc/protocol/server_session.hpp"
 #include "dfc/protocol/transport.hpp"
 
@@ -166,6 +168,9 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
   Liveness liveness(program.declared_minor >= heartbeat::kProgressSinceMinor && program.progress);
   const auto heartbeat = start_heartbeat(context, endpoint, program, liveness, session.version(), keys);
   if (heartbeat) session.set_heartbeat_endpoint(heartbeat->endpoint());
+  // Measures what run.stall_timeout_s must exceed, on request (docs/running.md); destroyed before `liveness`.
+  std::optional<ProgressGapProbe> progress_gaps;
+  if (const char* wanted = std::getenv(ProgressGapProbe::kVariable); wanted != nullptr && *wanted != '\0') progress_gaps.emplace(liveness, program.name);
   if (keys) std::cout << authentication::kAnnouncement << "\n";
   else if (program.declared_minor >= authentication::kSinceMinor && program.authentication)
     std::cerr << program.name << ": no " << authentication::kKeyFileVariable << " in the environment: any process on this host that reaches "
