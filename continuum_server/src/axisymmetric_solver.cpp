@@ -31,7 +31,6 @@ AxisymmetricSolver::AxisymmetricSolver(AxisymmetricMesh mesh, std::shared_ptr<co
   masses_.assign(nodes, 0.0);
   prescribed_.assign(nodes, {false, false});
   prescribed_velocities_.assign(nodes, Point::Zero());
-  nodal_volumetric_.assign(nodes, 0.0);
   pore_pressures_.assign(nodes, 0.0);
   pore_pressure_prescribed_.assign(nodes, false);
   stresses_.assign(triangles, initial_stress);
@@ -80,35 +79,27 @@ double AxisymmetricSolver::undrained_bulk_modulus() const {
   const double bulk = model_->stiffest_moduli().bulk;
   if (!settings_.pore_water.enabled) return bulk;
   const double alpha = settings_.pore_water.biot_coefficient;
-  // Undrained, the water adds α² M_w to the skeleton's bulk modulus (Biot 1941;
-  // Verruijt 2016 §1.4): it sizes the masses and the projection's weight.
+  // Undrained, the water adds α² M_w to the skeleton's bulk modulus (Biot
+  // 1941, doi:10.1063/1.1712886; Skempton 1954): it sizes the masses.
   return bulk + alpha * alpha * settings_.pore_water.biot_modulus();
 }
 
-AxisymmetricSolver::VolumetricField AxisymmetricSolver::volumetric_field(std::span<const double> volumes,
-                                                                         std::span<const double> values) {
+std::vector<double> AxisymmetricSolver::volumetric_field(std::span<const double> volumes, std::span<const double> values) {
   const Index nodes = mesh_.nodes.size();
-  VolumetricField field;
   switch (settings_.volumetric_strain) {
     case VolumetricStrain::element:
-      field.nodal = nodal_means(mesh_.triangles, nodes, volumes, values);
-      field.triangle.assign(values.begin(), values.end());
       break;
     case VolumetricStrain::nodal_average:
-      field.nodal = nodal_means(mesh_.triangles, nodes, volumes, values);
-      field.triangle = triangle_means(mesh_.triangles, field.nodal);
-      break;
+      return nodal_average(mesh_.triangles, nodes, volumes, values);
     case VolumetricStrain::pressure_projection: {
       // Dohrmann & Bochev (2004): weight τ = K/G of the projection term for
       // the skeleton (the pore water has its own, water_operator()).
       const constitutive::ElasticModuli moduli = model_->stiffest_moduli();
       const double weight = settings_.pressure_stabilisation * moduli.bulk / moduli.shear;
-      field.nodal = projection_.nodal_solution(mesh_.triangles, nodes, volumes, weight, values);
-      field.triangle = triangle_means(mesh_.triangles, field.nodal);
-      break;
+      return triangle_means(mesh_.triangles, projection_.nodal_solution(mesh_.triangles, nodes, volumes, weight, values));
     }
   }
-  return field;
+  return {values.begin(), values.end()};
 }
 
 ProjectionOperator AxisymmetricSolver::water_operator() const {
@@ -165,7 +156,7 @@ void AxisymmetricSolver::advance_flow() {
     if (stabilised) {
       // (C + τ_w S) Δp = −Δt H p: the stabilisation acts on the whole pore
       // pressure change, as in the stabilised mass balance of White & Borja
-      // (2008); C + τ_w S ≥ C, so the lumped bound above stays stable.
+      // (2008, doi:10.1016/j.cma.2008.05.015); C + τ_w S ≥ C, so the lumped bound above stays stable.
       for (double& q : outflow) q *= -dt;
       const std::vector<double> change = water_projection_.solve(mesh_.triangles, volumes, water_operator(), pore_pressure_prescribed_, outflow);
       for (Index n = 0; n < nodes; ++n) pore_pressures_[n] += change[n];
@@ -198,9 +189,8 @@ void AxisymmetricSolver::move_and_update_stresses() {
     volumetric[t] = strain_increments[t].trace();
   }
   // Volumetric part from the nodal field (docs/continuum_pile.md §3), deviatoric part kept.
-  VolumetricField field = volumetric_field(volumes, volumetric);
-  for (Index t = 0; t < triangles; ++t) strain_increments[t] += SymTensor::isotropic((field.triangle[t] - volumetric[t]) / 3.0);
-  nodal_volumetric_ = std::move(field.nodal);
+  const std::vector<double> treated = volumetric_field(volumes, volumetric);
+  for (Index t = 0; t < triangles; ++t) strain_increments[t] += SymTensor::isotropic((treated[t] - volumetric[t]) / 3.0);
   if (settings_.pore_water.enabled) {
     // The volume change's part of the fluid balance (Biot 1941), C Δp_w = −α B Δε_v:
     // with the projection, C + τ_w S in place of C (water_operator()).
@@ -237,7 +227,7 @@ void AxisymmetricSolver::move_and_update_stresses() {
   // strain), the counterpart of fdm_models.md §2 choice 9. Averaging the whole
   // change would smooth the elastic part twice.
   if (model_->needs_mean_stress_averaging() && settings_.volumetric_strain != VolumetricStrain::element) {
-    const std::vector<double> smoothed = volumetric_field(volumes, plastic_mean_change).triangle;
+    const std::vector<double> smoothed = volumetric_field(volumes, plastic_mean_change);
     for (Index t = 0; t < triangles; ++t) stresses_[t] += SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]);
   }
   advance_flow();

@@ -174,7 +174,6 @@ std::vector<AxisymmetricSolver::Interpolation> AxisymmetricSolver::add_nodes(con
   }
   const Index nodes = mesh_.nodes.size();
   masses_.resize(nodes, 0.0);
-  nodal_volumetric_.resize(nodes, 0.0);
   internal_forces_.resize(nodes, Point::Zero());
   external_forces_.resize(nodes, Point::Zero());
   return interpolations;

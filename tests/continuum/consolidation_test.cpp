@@ -80,6 +80,15 @@ class Column {
   AxisymmetricSolver solver_;
 };
 
+// Terzaghi's (1943) tabulated values: U = 50 % at T = 0.197, 90 % at T = 0.848;
+// right after loading the interior still carries p₀.
+TEST(Consolidation, ClosedFormGivesTerzaghisTabulatedTimeFactors) {
+  EXPECT_NEAR(terzaghi_degree_of_consolidation(0.197), 0.5, 1e-3);  // the table's three digits
+  EXPECT_NEAR(terzaghi_degree_of_consolidation(0.848), 0.9, 1e-3);
+  EXPECT_NEAR(terzaghi_pressure_ratio(0.5, 1e-5), 1.0, 1e-6);
+  EXPECT_NEAR(terzaghi_pressure_ratio(0.0, 0.3), 0.0, 1e-12);  // the drained face
+}
+
 // The load step with no drainage: the water takes p₀ = α q M_w/(E_oed + α² M_w)
 // (Biot 1941; Skempton's B for oedometric loading): q × 10/11 for
 // M_w = 10 E_oed, q × 1000/1001 for M_w = 1000 E_oed (nearly incompressible

@@ -99,9 +99,7 @@ class AxisymmetricSolver {
   [[nodiscard]] double flow_time() const { return flow_time_; }
   /// Flow substeps of the last step (docs/continuum_pile.md §6).
   [[nodiscard]] int flow_substeps() const { return flow_substeps_; }
-  /// Per node, the volumetric strain increment of the last step as the
-  /// nodal field the volumetric treatment forms (for tests of checkerboards).
-  [[nodiscard]] std::span<const double> nodal_volumetric_increments() const { return nodal_volumetric_; }
+
   /// Sum over `nodes` of the internal nodal forces of the last step (N): for
   /// nodes whose motion is prescribed, the force the body resists it with.
   [[nodiscard]] Point internal_force_sum(std::span<const Index> nodes) const;
@@ -135,13 +133,9 @@ class AxisymmetricSolver {
   void move_and_update_stresses();
   void compute_forces_and_masses();
   void update_velocities();
-  /// Per node, the volumetric strain increment as the settings form it;
-  /// per triangle, the value its stress update uses.
-  struct VolumetricField {
-    std::vector<double> nodal;
-    std::vector<double> triangle;
-  };
-  [[nodiscard]] VolumetricField volumetric_field(std::span<const double> volumes, std::span<const double> values);
+  /// Per triangle, its value of a volumetric field (the strain increment,
+  /// the plastic mean-stress change) as the volumetric treatment forms it.
+  [[nodiscard]] std::vector<double> volumetric_field(std::span<const double> volumes, std::span<const double> values);
   /// The flow of the step's time (explicit Darcy, subcycled; docs/continuum_pile.md §6).
   void advance_flow();
   /// The pore water's stabilised storage C + τ_w S (docs/continuum_pile.md §6).
@@ -174,7 +168,6 @@ class AxisymmetricSolver {
   std::vector<std::pair<std::string, double>> pressures_;
   PressureProjection projection_;        ///< the skeleton's nodal volumetric strain
   PressureProjection water_projection_;  ///< the pore water's pressure change
-  std::vector<double> nodal_volumetric_;
   std::vector<double> pore_pressures_;
   std::vector<bool> pore_pressure_prescribed_;
   double flow_time_ = 0.0;

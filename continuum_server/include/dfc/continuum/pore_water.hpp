@@ -5,8 +5,8 @@
 // (stresses tension positive, the pore pressure p_w compression positive),
 // fluid mass balance (1/M_w) ∂p_w/∂t + α ∂ε_v/∂t + ∇·q = 0 with Darcy's
 // q = −(k/γ_w) ∇p_w, where p_w is the excess over the hydrostatic pressure
-// (gravity is not modelled). Grains incompressible: 1/M_w = n/K_f (Biot
-// modulus; Verruijt 2016, Theory and Problems of Poroelasticity §1.3).
+// (gravity is not modelled). Grains incompressible: the Biot modulus is
+// M_w = K_f/n (in general 1/M_w = n/K_f + (α − n)/K_s, K_s → ∞ here).
 namespace dfc::continuum {
 
 struct PoreWaterSettings {

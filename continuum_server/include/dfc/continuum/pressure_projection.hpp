@@ -4,9 +4,10 @@
 //
 // Equal-order P1–P1 displacement–pressure triangles violate the inf–sup
 // condition; Dohrmann & Bochev (2004, Int. J. Numer. Meth. Fluids 46:183–201,
-// doi:10.1002/fld.752, Eq. 12–14) stabilise them by penalising the difference
-// between the pressure and its L² projection Π onto piecewise constants:
-// the pressure equation of a nearly incompressible solid becomes
+// doi:10.1002/fld.752) stabilise them by penalising the difference between
+// the pressure and its L² projection Π onto piecewise constants (their
+// stabilised form, written here for a nearly incompressible solid as in
+// Bochev, Dohrmann & Gunzburger 2006, doi:10.1137/050631227):
 //   ∫ q ε_v dV − (1/K) ∫ q p dV − (1/G) ∫ (q − Πq)(p − Πp) dV = 0.
 // With the pressure mass lumped (M_nn = Σ V_e/3) and e = p/K the nodal
 // volumetric strain, this is the linear system

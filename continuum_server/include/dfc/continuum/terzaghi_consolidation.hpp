@@ -1,14 +1,13 @@
 #pragma once
 // Terzaghi's one-dimensional consolidation (Terzaghi 1943, Theoretical Soil
-// Mechanics, Wiley, ch. XIII, doi:10.1002/9780470172766; Verruijt 2016,
-// Theory and Problems of Poroelasticity §2.5): a layer of thickness H drained
+// Mechanics, Wiley, doi:10.1002/9780470172766): a layer of thickness H drained
 // at one face and impermeable at the other, loaded at t = 0 by a constant
 // vertical stress that raises the pore pressure uniformly to p₀. With
 // T = c_v t / H² and z the distance from the drained face,
 //   p(z, T)/p₀ = Σ_{m≥0} (2/M) sin(M z/H) exp(−M² T),   M = (2m + 1) π/2,
 //   U(T) = 1 − Σ_{m≥0} (2/M²) exp(−M² T)   (degree of consolidation).
 // With a compressible fluid and the skeleton's constrained modulus E_oed
-// (Biot 1941; Verruijt 2016 §2.5), from the undrained balance
+// (Biot 1941, doi:10.1063/1.1712886), from the undrained balance
 // p₀/M_w = −α ε_v and q = E_oed (−ε_v) + α p₀:
 //   p₀ = α q M_w / (E_oed + α² M_w),   c_v = (k/γ_w) / (1/M_w + α²/E_oed).
 namespace dfc::continuum {
