@@ -202,5 +202,47 @@ TEST(Consolidation, TooManySubstepsFailWithAMessageNamingTheSettings) {
   }
 }
 
+// A refining remesh right after the top is drained (t = 0): the nodes added
+// take the old nodal pore pressure, those on the drained top edge stay
+// drained, and the consolidation of the re-triangulated (irregular) column
+// still follows Terzaghi.
+TEST(Consolidation, RemeshedColumnKeepsItsPorePressureAndDrainageAndFollowsTerzaghi) {
+  const PoreWaterSettings water = soft_water(10.0);
+  Column column(water);
+  AxisymmetricSolver& solver = column.solver();
+  for (int s = 0; s < 3000; ++s) solver.step();
+  const OedometricBiotColumn theory = closed_form(water);
+  const double initial = theory.undrained_pore_pressure(kLoad);
+  const double undrained = column.settlement();
+  solver.prescribe_pore_pressure(solver.mesh().node_group("top"), 0.0);
+  const Index nodes_before = solver.mesh().nodes.size();
+  const RemeshReport report = solver.remesh(30.0);  // the layers' right triangles have 26.6° angles
+  ASSERT_GT(report.nodes_added, 0u);
+  // Every added node below the top layer sits in triangles whose nodes all
+  // carry p₀ (uniform to 7e-6 after the undrained step, the tolerance's reason).
+  Index checked = 0;
+  for (Index n = nodes_before; n < solver.mesh().nodes.size(); ++n) {
+    if (solver.mesh().nodes[n].y() > kHeight - kHeight / double(kLayers)) continue;
+    EXPECT_NEAR(solver.pore_pressures()[n], initial, 1e-5 * initial);
+    ++checked;
+  }
+  EXPECT_GT(checked, 0u);
+  solver.set_flow_time_per_step(2.5e-5 * kHeight * kHeight / theory.consolidation_coefficient());
+  while (solver.flow_time() * theory.consolidation_coefficient() < 0.2 * kHeight * kHeight) solver.step();
+  const double time_factor = solver.flow_time() * theory.consolidation_coefficient() / (kHeight * kHeight);
+  const double degree = (column.settlement() - undrained) / (theory.biot_coefficient * initial * kHeight / kSkeleton.p_wave());
+  Index held = 0;
+  for (const Index n : solver.mesh().node_group("top")) {
+    EXPECT_EQ(solver.pore_pressures()[n], 0.0);
+    held += n >= nodes_before ? 1 : 0;
+  }
+  std::printf("remeshed column: %zu nodes added (%zu on the drained top), %zu -> %zu triangles; T = %.3f U = %.4f, Terzaghi %.4f\n",
+              report.nodes_added, held, report.triangles_before, report.triangles_after, time_factor, degree,
+              terzaghi_degree_of_consolidation(time_factor));
+  EXPECT_GT(held, 0u);  // the top edge was split, and its new nodes are drained
+  // 0.01, as on the regular column.
+  EXPECT_NEAR(degree, terzaghi_degree_of_consolidation(time_factor), 0.01);
+}
+
 }  // namespace
 }  // namespace dfc::continuum
