@@ -40,7 +40,9 @@ struct SolverSettings {
   double mass_safety = 2.0;
   /// How a triangle's volumetric strain increment is formed
   /// (docs/continuum_pile.md §3): the Dohrmann & Bochev (2004) pressure
-  /// projection by default; the others only to show the locking it removes.
+  /// projection by default. `nodal_average` is cheaper and, where the
+  /// pressure gradient is steep (a plastic zone), a little closer, but
+  /// carries a pressure checkerboard as ν → 0.5; `element` locks.
   VolumetricStrain volumetric_strain = VolumetricStrain::pressure_projection;
   /// Factor on the projection's weight τ = K/G (Dohrmann & Bochev 2004 use 1).
   double pressure_stabilisation = 1.0;
@@ -126,7 +128,9 @@ class AxisymmetricSolver {
   /// refinement); an added node takes the old mesh's velocity field, and one
   /// on a boundary edge the velocity components prescribed at both its ends
   /// (interpolated) and the named groups of both, its edge being split in
-  /// the edge groups.
+  /// the edge groups. Pore pressures stay at the nodes; an added node takes
+  /// the old mesh's field, and one on an edge whose ends are both drained
+  /// (held) is held at their interpolated pressure.
   RemeshReport remesh(double minimum_angle_deg = 0.0);
 
  private:
