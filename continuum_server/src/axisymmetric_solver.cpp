@@ -5,7 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <sstream>
+#include <stdexcept>
 
+#include "dfc/continuum/darcy_flow.hpp"
 #include "dfc/continuum/nodal_average.hpp"
 
 namespace dfc::continuum {
@@ -28,6 +31,8 @@ AxisymmetricSolver::AxisymmetricSolver(AxisymmetricMesh mesh, std::shared_ptr<co
   masses_.assign(nodes, 0.0);
   prescribed_.assign(nodes, {false, false});
   prescribed_velocities_.assign(nodes, Point::Zero());
+  pore_pressures_.assign(nodes, 0.0);
+  pore_pressure_prescribed_.assign(nodes, false);
   stresses_.assign(triangles, initial_stress);
   const std::size_t state_size = model_->state_size();
   model_state_.assign(triangles * state_size, 0.0);
@@ -50,6 +55,14 @@ void AxisymmetricSolver::prescribe_velocity(std::span<const Index> nodes, Axis a
   }
 }
 
+void AxisymmetricSolver::prescribe_pore_pressure(std::span<const Index> nodes, double pressure) {
+  assert(settings_.pore_water.enabled && "pore pressures need SolverSettings::pore_water.enabled");
+  for (const Index n : nodes) {
+    pore_pressure_prescribed_[n] = true;
+    pore_pressures_[n] = pressure;
+  }
+}
+
 void AxisymmetricSolver::apply_pressure(const std::string& edge_group, double pressure) {
   (void)mesh_.edge_group(edge_group);  // asserts that it exists
   pressures_.emplace_back(edge_group, pressure);
@@ -60,6 +73,99 @@ void AxisymmetricSolver::step() {
   compute_forces_and_masses();
   update_velocities();
   ++steps_;
+}
+
+double AxisymmetricSolver::undrained_bulk_modulus() const {
+  const double bulk = model_->stiffest_moduli().bulk;
+  if (!settings_.pore_water.enabled) return bulk;
+  const double alpha = settings_.pore_water.biot_coefficient;
+  // Undrained, the water adds α² M_w to the skeleton's bulk modulus (Biot
+  // 1941, doi:10.1063/1.1712886; Skempton 1954): it sizes the masses.
+  return bulk + alpha * alpha * settings_.pore_water.biot_modulus();
+}
+
+std::vector<double> AxisymmetricSolver::volumetric_field(std::span<const double> volumes, std::span<const double> values) {
+  const Index nodes = mesh_.nodes.size();
+  switch (settings_.volumetric_strain) {
+    case VolumetricStrain::element:
+      break;
+    case VolumetricStrain::nodal_average:
+      return nodal_average(mesh_.triangles, nodes, volumes, values);
+    case VolumetricStrain::pressure_projection: {
+      // Dohrmann & Bochev (2004): weight τ = K/G of the projection term for
+      // the skeleton (the pore water has its own, water_operator()).
+      const constitutive::ElasticModuli moduli = model_->stiffest_moduli();
+      const double weight = settings_.pressure_stabilisation * moduli.bulk / moduli.shear;
+      return triangle_means(mesh_.triangles, projection_.nodal_solution(mesh_.triangles, nodes, volumes, weight, values));
+    }
+  }
+  return {values.begin(), values.end()};
+}
+
+ProjectionOperator AxisymmetricSolver::water_operator() const {
+  // Dohrmann & Bochev's (2004) projection for the water's pressure: the
+  // undrained constraint is the water's, its "bulk modulus" α² M_w, so the
+  // skeleton's (M + (α² M_w/G) S) e = B Δε_v with e = −Δp_w/(α M_w) reads
+  // (M/M_w + (α²/G) S) Δp_w = −α B Δε_v: storage c = 1/M_w, weight τ_w = α²/G.
+  const double alpha = settings_.pore_water.biot_coefficient;
+  return {1.0 / settings_.pore_water.biot_modulus(),
+          settings_.pressure_stabilisation * alpha * alpha / model_->stiffest_moduli().shear};
+}
+
+Stress AxisymmetricSolver::total_stress(Index triangle) const {
+  const Triangle& tri = mesh_.triangles[triangle];
+  const double mean_pore_pressure = (pore_pressures_[tri[0]] + pore_pressures_[tri[1]] + pore_pressures_[tri[2]]) / 3.0;
+  // σ = σ′ − α p_w I (tension positive, p_w compression positive; Biot 1941).
+  return stresses_[triangle] - SymTensor::isotropic(settings_.pore_water.biot_coefficient * mean_pore_pressure);
+}
+
+void AxisymmetricSolver::advance_flow() {
+  flow_substeps_ = 0;
+  const PoreWaterSettings& water = settings_.pore_water;
+  if (!water.enabled || water.time_per_step <= 0.0) return;
+  const Index nodes = mesh_.nodes.size();
+  // Lumped storage C_i = (Σ_e V_e/3)/M_w, m³/Pa.
+  std::vector<double> storage(nodes, 0.0);
+  for (const Triangle& tri : mesh_.triangles) {
+    const double volume = triangle_geometry(gather(mesh_.nodes, tri)).volume();
+    for (const Index n : tri) storage[n] += volume / 3.0 / water.biot_modulus();
+  }
+  std::vector<bool> free_nodes(nodes);
+  for (Index n = 0; n < nodes; ++n) free_nodes[n] = !pore_pressure_prescribed_[n];
+  // The water alone (the skeleton held during the substeps): Δt ≤ 2 C/Σ|H|,
+  // h²/(2 k M_w/γ_w) in 1-D. 0.9: the Gershgorin bound is attained in 1-D,
+  // where at the bound itself the shortest mode would not decay.
+  const double stable = 0.9 * stable_flow_step(storage, darcy_row_sums(mesh_.nodes, mesh_.triangles, water.mobility()), free_nodes);
+  const double substeps = std::ceil(water.time_per_step / stable);
+  if (substeps > water.max_flow_substeps) {
+    std::ostringstream message;
+    message << "continuum pore water: the flow needs " << substeps << " substeps per step (stable flow step " << stable
+            << " s for time_per_step " << water.time_per_step << " s; the bound is h^2/(2 k M_w/gamma_w) with M_w = K_f/n = "
+            << water.biot_modulus() << " Pa); lower PoreWaterSettings::time_per_step or raise max_flow_substeps ("
+            << water.max_flow_substeps << "), or soften fluid_bulk_modulus where the problem allows";
+    throw std::runtime_error(message.str());
+  }
+  flow_substeps_ = static_cast<int>(substeps);
+  const double dt = water.time_per_step / substeps;
+  const bool stabilised = settings_.volumetric_strain == VolumetricStrain::pressure_projection;
+  std::vector<double> volumes;
+  if (stabilised)
+    for (const Triangle& tri : mesh_.triangles) volumes.push_back(triangle_geometry(gather(mesh_.nodes, tri)).volume());
+  for (int s = 0; s < flow_substeps_; ++s) {
+    std::vector<double> outflow = darcy_outflow(mesh_.nodes, mesh_.triangles, water.mobility(), pore_pressures_);
+    if (stabilised) {
+      // (C + τ_w S) Δp = −Δt H p: the stabilisation acts on the whole pore
+      // pressure change, as in the stabilised mass balance of White & Borja
+      // (2008, doi:10.1016/j.cma.2008.05.015); C + τ_w S ≥ C, so the lumped bound above stays stable.
+      for (double& q : outflow) q *= -dt;
+      const std::vector<double> change = water_projection_.solve(mesh_.triangles, volumes, water_operator(), pore_pressure_prescribed_, outflow);
+      for (Index n = 0; n < nodes; ++n) pore_pressures_[n] += change[n];
+    } else {
+      for (Index n = 0; n < nodes; ++n)
+        if (free_nodes[n]) pore_pressures_[n] -= dt * outflow[n] / storage[n];
+    }
+  }
+  flow_time_ += water.time_per_step;
 }
 
 void AxisymmetricSolver::move_and_update_stresses() {
@@ -82,10 +188,25 @@ void AxisymmetricSolver::move_and_update_stresses() {
     volumes[t] = g.volume();
     volumetric[t] = strain_increments[t].trace();
   }
-  // Bonet & Burton (1998): volumetric part from the nodal averages, deviatoric part kept.
-  if (settings_.average_volumetric_strain) {
-    const std::vector<double> averaged = nodal_average(mesh_.triangles, mesh_.nodes.size(), volumes, volumetric);
-    for (Index t = 0; t < triangles; ++t) strain_increments[t] += SymTensor::isotropic((averaged[t] - volumetric[t]) / 3.0);
+  // Volumetric part from the nodal field (docs/continuum_pile.md §3), deviatoric part kept.
+  const std::vector<double> treated = volumetric_field(volumes, volumetric);
+  for (Index t = 0; t < triangles; ++t) strain_increments[t] += SymTensor::isotropic((treated[t] - volumetric[t]) / 3.0);
+  if (settings_.pore_water.enabled) {
+    // The volume change's part of the fluid balance (Biot 1941), C Δp_w = −α B Δε_v:
+    // with the projection, C + τ_w S in place of C (water_operator()).
+    const double alpha = settings_.pore_water.biot_coefficient;
+    if (settings_.volumetric_strain == VolumetricStrain::pressure_projection) {
+      std::vector<double> rhs(mesh_.nodes.size(), 0.0);
+      for (Index t = 0; t < triangles; ++t)
+        for (const Index n : mesh_.triangles[t]) rhs[n] -= alpha * volumes[t] * volumetric[t] / 3.0;
+      const std::vector<double> change = water_projection_.solve(mesh_.triangles, volumes, water_operator(), pore_pressure_prescribed_, rhs);
+      for (Index n = 0; n < mesh_.nodes.size(); ++n) pore_pressures_[n] += change[n];
+    } else {
+      // Lumped: Δp_w = −α M_w Δε̄_v(n), the nodal mean strain.
+      const std::vector<double> nodal = nodal_means(mesh_.triangles, mesh_.nodes.size(), volumes, volumetric);
+      for (Index n = 0; n < mesh_.nodes.size(); ++n)
+        if (!pore_pressure_prescribed_[n]) pore_pressures_[n] -= alpha * settings_.pore_water.biot_modulus() * nodal[n];
+    }
   }
 
   for (Index n = 0; n < mesh_.nodes.size(); ++n) mesh_.nodes[n] += velocities_[n];
@@ -105,22 +226,24 @@ void AxisymmetricSolver::move_and_update_stresses() {
   // change is averaged the same way (the elastic part already is, through the
   // strain), the counterpart of fdm_models.md §2 choice 9. Averaging the whole
   // change would smooth the elastic part twice.
-  if (model_->needs_mean_stress_averaging()) {
-    const std::vector<double> smoothed = nodal_average(mesh_.triangles, mesh_.nodes.size(), volumes, plastic_mean_change);
+  if (model_->needs_mean_stress_averaging() && settings_.volumetric_strain != VolumetricStrain::element) {
+    const std::vector<double> smoothed = volumetric_field(volumes, plastic_mean_change);
     for (Index t = 0; t < triangles; ++t) stresses_[t] += SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]);
   }
+  advance_flow();
 }
 
 void AxisymmetricSolver::compute_forces_and_masses() {
   std::fill(internal_forces_.begin(), internal_forces_.end(), Point::Zero());
   std::fill(external_forces_.begin(), external_forces_.end(), Point::Zero());
   std::fill(masses_.begin(), masses_.end(), 0.0);
-  const constitutive::ElasticModuli moduli = model_->stiffest_moduli();
+  const double shear = model_->stiffest_moduli().shear;
+  const double bulk = undrained_bulk_modulus();
   for (Index t = 0; t < mesh_.triangles.size(); ++t) {
     const Triangle& tri = mesh_.triangles[t];
     const TriangleGeometry g = triangle_geometry(gather(mesh_.nodes, tri));
-    const NodalVectors f = internal_forces(g, stresses_[t]);
-    const std::array<double, 3> rows = stiffness_row_sums(g, moduli.bulk, moduli.shear);
+    const NodalVectors f = internal_forces(g, settings_.pore_water.enabled ? total_stress(t) : stresses_[t]);
+    const std::array<double, 3> rows = stiffness_row_sums(g, bulk, shear);
     for (int i = 0; i < 3; ++i) {
       internal_forces_[tri[i]] += f[i];
       // Central differences are stable for Δt ≤ 2/ω_max and ω_max² ≤ max_i Σ_j|K_ij|/m_i

@@ -114,7 +114,12 @@ std::vector<AxisymmetricSolver::Interpolation> AxisymmetricSolver::add_nodes(con
     const auto weights = barycentric_coordinates(p, mesh_.nodes[host[0]], mesh_.nodes[host[1]], mesh_.nodes[host[2]]);
     interpolations.push_back({hosts[k], weights});
     Point velocity = Point::Zero();
-    for (int i = 0; i < 3; ++i) velocity += weights[i] * velocities_[host[i]];
+    double pore_pressure = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      velocity += weights[i] * velocities_[host[i]];
+      pore_pressure += weights[i] * pore_pressures_[host[i]];
+    }
+    bool pore_pressure_prescribed = false;
     std::array<bool, 2> prescribed{false, false};
     Point prescribed_velocity = Point::Zero();
     const Index edge = retriangulation.boundary_edge_of_added[k];
@@ -132,6 +137,11 @@ std::vector<AxisymmetricSolver::Interpolation> AxisymmetricSolver::add_nodes(con
             (1.0 - along) * prescribed_velocities_[a][component] + along * prescribed_velocities_[b][component];
         velocity[component] = prescribed_velocity[component];
       }
+      // A drained edge stays drained: its pressure interpolated between its ends.
+      if (pore_pressure_prescribed_[a] && pore_pressure_prescribed_[b]) {
+        pore_pressure_prescribed = true;
+        pore_pressure = (1.0 - along) * pore_pressures_[a] + along * pore_pressures_[b];
+      }
       for (auto& [name, group] : mesh_.node_groups)
         if (std::find(group.begin(), group.end(), a) != group.end() && std::find(group.begin(), group.end(), b) != group.end())
           group.push_back(node);
@@ -141,6 +151,8 @@ std::vector<AxisymmetricSolver::Interpolation> AxisymmetricSolver::add_nodes(con
     velocities_.push_back(velocity);
     prescribed_.push_back(prescribed);
     prescribed_velocities_.push_back(prescribed_velocity);
+    pore_pressures_.push_back(pore_pressure);
+    pore_pressure_prescribed_.push_back(pore_pressure_prescribed);
   }
   for (auto& [name, edges] : mesh_.edge_groups) {
     std::vector<Edge> split_edges;

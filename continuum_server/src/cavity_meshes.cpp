@@ -46,6 +46,13 @@ AxisymmetricMesh mapped_grid(const std::vector<double>& radii, const std::vector
     first.push_back(node(i, 0));
     last.push_back(node(i, levels.size() - 1));
   }
+  // Body on the left: along i on the first side, against i on the last.
+  auto& first_edges = mesh.edge_groups[first_side];
+  auto& last_edges = mesh.edge_groups[last_side];
+  for (Index i = 0; i + 1 < columns; ++i) {
+    first_edges.push_back({node(i, 0), node(i + 1, 0)});
+    last_edges.push_back({node(i + 1, levels.size() - 1), node(i, levels.size() - 1)});
+  }
   // Body on the left: against j along the cavity wall, along j on the outer wall.
   auto& inner_edges = mesh.edge_groups["inner"];
   auto& outer_edges = mesh.edge_groups["outer"];

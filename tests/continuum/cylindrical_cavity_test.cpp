@@ -71,25 +71,27 @@ TEST(CylindricalCavity, TrescaPressureFollowsTheLargeStrainClosedFormToThreeTime
               limit_pressure(problem) / 1e3);
 }
 
-// Elastic, ν = 0.499, a/a₀ = 1.001: Lamé's cavity in plane strain with the
-// pressure σ₀ held at b, p − σ₀ = 2G (u/a)(1 − a²/b²) for an incompressible
-// medium (Timoshenko & Goodier 1970); ν = 0.499 differs by O((1 − 2ν) a²/b²) = 2e-7.
+// Elastic, ν = 0.4999 (K/G = 5000), a/a₀ = 1.001: Lamé's cavity in plane
+// strain with the pressure σ₀ held at b, p − σ₀ = 2G (u/a)(1 − a²/b²) for an
+// incompressible medium (Timoshenko & Goodier 1970); ν = 0.4999 differs by
+// O((1 − 2ν) a²/b²) = 2e-8.
 TEST(CylindricalCavity, NearlyIncompressibleElasticWallPressureIsLames) {
-  const double poisson = 0.499;
+  const double poisson = 0.4999;
   const constitutive::ElasticModuli moduli = constitutive::moduli_from_young_poisson(2.0 * 1e7 * (1.0 + poisson), poisson);
   const auto model = std::make_shared<constitutive::ElasticModel>(moduli);
   const test::Loading loading{20000, 100000, {1.001}};
   const double strain = 1e-3;
   const double lame = kInSitu + 2.0 * moduli.shear * strain * (1.0 - 1.0 / (kOuterRadius * kOuterRadius));
-  const test::CavityRun averaged = expand(model, {}, loading);
-  const double error = (averaged.pressures.back() - lame) / (lame - kInSitu);
-  std::printf("elastic nu = 0.499: wall pressure change error %+.3f %% (unbalanced %.1e)\n", 100.0 * error,
-              averaged.unbalanced.back());
-  // 1 % of the pressure change: the small-strain closed form differs from the
-  // solver's logarithmic strain by O(u/a) = 0.1 %. (This radial field is
-  // isochoric node by node, so it cannot show locking; the spherical cavity
-  // on a meridian mesh does, tests/continuum/spherical_cavity_test.cpp.)
-  EXPECT_NEAR(error, 0.0, 0.01);
+  const test::CavityRun run = expand(model, {}, loading);
+  const double error = (run.pressures.back() - lame) / (lame - kInSitu);
+  std::printf("elastic nu = 0.4999: wall pressure change error %+.3f %% (unbalanced %.1e)\n", 100.0 * error, run.unbalanced.back());
+  // Measured −0.081 % (+0.015 % with 30 radial divisions): both below the
+  // O(u/a) = 0.1 % by which the small-strain closed form differs from the
+  // solver's logarithmic strain, so refinement cannot show here. 0.5 % of
+  // the pressure change. (This radial field is isochoric node by node, so it
+  // cannot show locking; the spherical cavity on a meridian mesh does,
+  // tests/continuum/spherical_cavity_test.cpp.)
+  EXPECT_NEAR(error, 0.0, 0.005);
 }
 
 }  // namespace

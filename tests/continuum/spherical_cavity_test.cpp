@@ -1,10 +1,10 @@
 // The spherical cavity on a meridian mesh (docs/continuum_pile.md §3, §7): a
 // two-dimensional triangulation of a one-dimensional field, where
 // constant-strain triangles lock when the material is nearly incompressible
-// and the nodal-averaged volumetric strain must not; and its large-strain
-// expansion in Tresca.
+// and the pressure projection must not; and its large-strain expansion in Tresca.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -19,38 +19,76 @@ namespace {
 
 constexpr double kInSitu = 200e3;
 
-// Elastic, ν = 0.499, a/a₀ = 1.001: Lamé's spherical cavity with the pressure
-// σ₀ held at b, p − σ₀ = 4G (u/a)(1 − a³/b³) for an incompressible medium
-// (Timoshenko & Goodier 1970); ν = 0.499 differs by O((1 − 2ν) a³/b³) = 3e-7.
-TEST(SphericalCavity, NearlyIncompressibleElasticWallPressureIsLamesOnlyWithTheNodalAverage) {
-  const double poisson = 0.499;
-  const constitutive::ElasticModuli moduli = constitutive::moduli_from_young_poisson(2.0 * 1e7 * (1.0 + poisson), poisson);
-  const auto model = std::make_shared<constitutive::ElasticModel>(moduli);
-  const test::Loading loading{20000, 30000, {1.001}};
-  const double strain = 1e-3;
-  const CavityMeshSpec spec = test::spherical_test_mesh();
-  const double ratio = spec.inner_radius / spec.outer_radius;
-  const double lame = 4.0 * moduli.shear * strain * (1.0 - ratio * ratio * ratio);
+/// The test mesh (30 × 12, graded 1.1) or a coarser one with the same
+/// grading over the same radii (20 × 8, 1.1^1.5): h × 1.5.
+CavityMeshSpec sphere_mesh(Index radial_divisions) {
+  CavityMeshSpec spec = test::spherical_test_mesh();
+  if (radial_divisions == 20) {
+    spec.radial_divisions = 20;
+    spec.tangential_divisions = 8;
+    spec.radial_ratio = std::pow(1.1, 1.5);
+  }
+  return spec;
+}
 
-  const test::CavityRun averaged =
-      test::expand_cavity(test::CavityShape::spherical, spec, model, kInSitu, {}, loading);
-  SolverSettings plain;
-  plain.average_volumetric_strain = false;
-  const test::CavityRun locked =
-      test::expand_cavity(test::CavityShape::spherical, spec, model, kInSitu, plain, loading);
-  const double averaged_error = (averaged.pressures.back() - kInSitu - lame) / lame;
-  const double locked_error = (locked.pressures.back() - kInSitu - lame) / lame;
-  std::printf("spherical, nu = 0.499: wall pressure change error %+.2f %% with the nodal average (unbalanced %.1e), %+.1f %% without\n",
-              100.0 * averaged_error, averaged.unbalanced.back(), 100.0 * locked_error);
-  // Measured −0.20 % with the average, +2.7 % without. 1 %: the
-  // discretisation of a 1/ρ³ field by constant-strain rings 0.12 a₀ wide at
-  // the wall (−0.37 % on a 40 × 16 mesh, +4.4 % on 20 × 8), plus O(u/a) = 0.1 %
-  // of large strain against the small-strain closed form.
-  EXPECT_NEAR(averaged_error, 0.0, 0.01);
-  // Without the average the same mesh locks: too stiff by more than 2 %. (At
-  // ν = 0.4999 the average leaves +10 % against +35 % without: it reduces the
-  // locking but does not remove it; docs/continuum_pile.md §3.)
-  EXPECT_GT(locked_error, 0.02);
+struct ElasticSphere {
+  double wall_error = 0.0;       ///< (Δp − Δp_Lamé)/Δp_Lamé at the wall
+  double pressure_spread = 0.0;  ///< max over triangles |p − σ₀| / Δp_Lamé
+  double unbalanced = 0.0;
+};
+
+// Elastic, ν = 0.4999 (K/G = 5000), a/a₀ = 1.001: Lamé's spherical cavity
+// with the pressure σ₀ held at b (Timoshenko & Goodier 1970): the wall
+// pressure rises by Δp = 4G (u/a)(1 − a³/b³) for an incompressible medium
+// (ν = 0.4999 differs by O((1 − 2ν) a³/b³) = 3e-8), and the mean stress is σ₀
+// everywhere (σ_rr + 2σ_θθ does not change), so any spread of the
+// triangles' pressure is a spurious pressure mode.
+ElasticSphere nearly_incompressible_sphere(Index radial_divisions, VolumetricStrain treatment) {
+  const double poisson = 0.4999;
+  const constitutive::ElasticModuli moduli = constitutive::moduli_from_young_poisson(2.0 * 1e7 * (1.0 + poisson), poisson);
+  const CavityMeshSpec spec = sphere_mesh(radial_divisions);
+  SolverSettings settings;
+  settings.volumetric_strain = treatment;
+  test::CavityExpansion cavity(test::CavityShape::spherical, spec, std::make_shared<constitutive::ElasticModel>(moduli), kInSitu, settings);
+  cavity.expand_to(1.001, 20000);
+  cavity.settle(20000);
+  const double ratio = spec.inner_radius / spec.outer_radius;
+  const double lame = 4.0 * moduli.shear * 1e-3 * (1.0 - ratio * ratio * ratio);
+  ElasticSphere result;
+  result.wall_error = (cavity.wall_pressure() - kInSitu - lame) / lame;
+  for (const Stress& stress : cavity.solver().stresses())
+    result.pressure_spread = std::max(result.pressure_spread, std::abs(-stress.trace() / 3.0 - kInSitu) / lame);
+  result.unbalanced = cavity.solver().unbalanced_force_ratio();
+  return result;
+}
+
+TEST(SphericalCavity, NearlyIncompressibleElasticWallPressureConvergesToLameWithThePressureProjection) {
+  const ElasticSphere coarse = nearly_incompressible_sphere(20, VolumetricStrain::pressure_projection);
+  const ElasticSphere fine = nearly_incompressible_sphere(30, VolumetricStrain::pressure_projection);
+  std::printf("nu = 0.4999, pressure projection: wall pressure change error %+.2f %% (20 x 8), %+.2f %% (30 x 12); unbalanced %.1e\n",
+              100.0 * coarse.wall_error, 100.0 * fine.wall_error, fine.unbalanced);
+  // Measured −3.85 % and −1.87 % (−1.12 % on 40 × 16): of order h^1.8, the
+  // discretisation of a 1/ρ³ field by linear triangles; the projection is
+  // slightly soft. Bounds: the measured values with a margin of a third; the
+  // small-strain closed form itself differs by O(u/a) = 0.1 %.
+  EXPECT_NEAR(coarse.wall_error, 0.0, 0.05);
+  EXPECT_NEAR(fine.wall_error, 0.0, 0.025);
+  EXPECT_LT(std::abs(fine.wall_error), std::abs(coarse.wall_error));  // shrinks with refinement
+}
+
+TEST(SphericalCavity, NearlyIncompressiblePressureFieldIsUniformWithThePressureProjectionNotWithTheNodalAverage) {
+  const ElasticSphere projected = nearly_incompressible_sphere(30, VolumetricStrain::pressure_projection);
+  const ElasticSphere averaged = nearly_incompressible_sphere(30, VolumetricStrain::nodal_average);
+  std::printf("nu = 0.4999, 30 x 12: max |p - s0| / dp_wall = %.3f with the projection, %.1f with the nodal average "
+              "(wall errors %+.2f %%, %+.2f %%)\n",
+              projected.pressure_spread, averaged.pressure_spread, 100.0 * projected.wall_error, 100.0 * averaged.wall_error);
+  // Measured 0.059 with the projection (the largest next to the wall, where
+  // the field varies fastest) against 46.9 with the nodal average: Bonet &
+  // Burton's element, an unstabilised P1–P1 pair, carries a checkerboard 47
+  // times the wall pressure change, and its wall pressure is +10.3 % off.
+  EXPECT_LT(projected.pressure_spread, 0.1);
+  EXPECT_GT(averaged.pressure_spread, 10.0);
+  EXPECT_GT(averaged.wall_error, 0.05);
 }
 
 // Tresca (s_u = 100 kPa, G/s_u = 50, ν = 0.3) expanded from a₀ to 3a₀ on the
@@ -108,6 +146,40 @@ TEST(SphericalCavity, TrescaPressureStaysOnTheClosedFormAfterARefiningRemesh) {
   // 2 %: the tolerance for the cavity pressure.
   EXPECT_NEAR(at_2_5, exact_2_5, 0.02 * exact_2_5);
   EXPECT_NEAR(at_3, exact_3, 0.02 * exact_3);
+}
+
+// Undrained Tresca (ν = 0.4999: total stress, the plastic flow and the
+// elastic zone both at constant volume), the 20 × 8 mesh, expanded to
+// a/a₀ = 1.5 in 30 000 steps and settled for 15 000: plain constant-strain
+// triangles lock, either volumetric treatment follows the closed form.
+TEST(SphericalCavity, UndrainedTrescaPressureLocksWithoutAVolumetricTreatmentAndNotWithIt) {
+  const double strength = 100e3;
+  const double poisson = 0.4999;
+  const constitutive::ElasticModuli moduli = constitutive::moduli_from_young_poisson(2.0 * 50.0 * strength * (1.0 + poisson), poisson);
+  const auto model = std::make_shared<constitutive::MohrCoulombModel>(moduli, constitutive::MohrCoulombStrength{strength, 0.0, 0.0, 1e12});
+  const CavityMeshSpec spec = sphere_mesh(20);
+  const TrescaCavity problem{CavityGeometry::spherical, moduli.shear, moduli.bulk, strength, kInSitu, spec.inner_radius, spec.outer_radius};
+  const auto error = [&](VolumetricStrain treatment) {
+    SolverSettings settings;
+    settings.volumetric_strain = treatment;
+    const test::CavityRun run = test::expand_cavity(test::CavityShape::spherical, spec, model, kInSitu, settings, {30000, 15000, {1.5}});
+    const double exact = cavity_pressure(problem, run.radius_ratios.back() * spec.inner_radius);
+    return (run.pressures.back() - exact) / exact;
+  };
+  const double plain = error(VolumetricStrain::element);
+  const double averaged = error(VolumetricStrain::nodal_average);
+  const double projected = error(VolumetricStrain::pressure_projection);
+  std::printf("undrained Tresca sphere at a/a0 = 1.5, error from the closed form: %+.2f %% plain triangles, %+.2f %% nodal average, "
+              "%+.2f %% pressure projection\n", 100.0 * plain, 100.0 * averaged, 100.0 * projected);
+  // Measured +16.3 %, −0.56 % and −1.67 %. The projection is a little softer
+  // than the average here: its stabilisation term is consistent only to
+  // O(h |∇p| / G), and the plastic zone's pressure gradient 4 s_u/r is steep
+  // (−1.13 % at half the loading rate; docs/continuum_pile.md §3). 2 %: the
+  // issue's tolerance for the cavity pressure.
+  EXPECT_GT(plain, 0.10);
+  EXPECT_NEAR(averaged, 0.0, 0.02);
+  EXPECT_NEAR(projected, 0.0, 0.02);
+  EXPECT_LT(std::abs(projected), std::abs(plain));
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 #pragma once
 // The axisymmetric updated-Lagrangian explicit solver (docs/continuum_pile.md
-// §1–§3): linear triangles on the current geometry, the rate of deformation
-// with its hoop term, the Jaumann rotation, the nodal-averaged volumetric
-// strain increment, any shared constitutive model (dfc_constitutive), central
+// §1–§3, §6): linear triangles on the current geometry, the rate of
+// deformation with its hoop term, the Jaumann rotation, the volumetric strain
+// increment from a nodal pressure field (Dohrmann–Bochev projection by
+// default), any shared constitutive model (dfc_constitutive), central
 // differences with scaled masses (Δt = 1) and local damping as in fdm_server
-// (theory/fdm.md §1.8–§1.11).
+// (theory/fdm.md §1.8–§1.11), and optionally pore water at the nodes (Biot,
+// explicit Darcy flow).
 #include <memory>
 #include <span>
 #include <string>
@@ -13,9 +15,20 @@
 #include "dfc/constitutive/constitutive_model.hpp"
 #include "dfc/continuum/axisymmetric_mesh.hpp"
 #include "dfc/continuum/delaunay_retriangulation.hpp"
+#include "dfc/continuum/pore_water.hpp"
+#include "dfc/continuum/pressure_projection.hpp"
 #include "dfc/continuum/triangle_kinematics.hpp"
 
 namespace dfc::continuum {
+
+enum class VolumetricStrain {
+  /// Each triangle its own (constant-strain triangles: lock as ν → 0.5).
+  element,
+  /// Bonet & Burton's (1998) average nodal volumetric strain.
+  nodal_average,
+  /// Dohrmann & Bochev's (2004) stabilised nodal pressure (pressure_projection.hpp).
+  pressure_projection,
+};
 
 struct SolverSettings {
   /// Local damping coefficient α (Cundall 1987; theory/fdm.md §1.9).
@@ -25,10 +38,16 @@ struct SolverSettings {
   /// the coupling added by the nodal averaging and the stiffening of
   /// elements between two steps.
   double mass_safety = 2.0;
-  /// The Bonet & Burton (1998) nodal average of the volumetric strain
-  /// increment (docs/continuum_pile.md §3). Off only to show the locking it
-  /// removes (tests/continuum/).
-  bool average_volumetric_strain = true;
+  /// How a triangle's volumetric strain increment is formed
+  /// (docs/continuum_pile.md §3): the Dohrmann & Bochev (2004) pressure
+  /// projection by default. `nodal_average` is cheaper and, where the
+  /// pressure gradient is steep (a plastic zone), a little closer, but
+  /// carries a pressure checkerboard as ν → 0.5; `element` locks.
+  VolumetricStrain volumetric_strain = VolumetricStrain::pressure_projection;
+  /// Factor on the projection's weight τ = K/G (Dohrmann & Bochev 2004 use 1).
+  double pressure_stabilisation = 1.0;
+  /// Pore water (u–p_w, docs/continuum_pile.md §6); off by default (drained).
+  PoreWaterSettings pore_water;
   /// Density at the start, kg/m³: each triangle's mass ρ V₀ is kept (mass
   /// balance of an updated-Lagrangian element) and carried across remeshes.
   double density = 1000.0;
@@ -56,6 +75,11 @@ class AxisymmetricSolver {
   AxisymmetricSolver(AxisymmetricMesh mesh, std::shared_ptr<const constitutive::ConstitutiveModel> model,
                      const Stress& initial_stress, SolverSettings settings = {});
 
+  /// Holds the pore pressure of the nodes at `pressure` (Pa, compression
+  /// positive) from now on: a drained boundary. Requires pore water.
+  void prescribe_pore_pressure(std::span<const Index> nodes, double pressure);
+  /// The flow's time per mechanical step, s (0: undrained): changeable between steps.
+  void set_flow_time_per_step(double seconds) { settings_.pore_water.time_per_step = seconds; }
   /// Holds the velocity component of the nodes at `velocity` (m per step) from now on.
   void prescribe_velocity(std::span<const Index> nodes, Axis axis, double velocity);
   /// A normal pressure (Pa, compression positive) on the edges of `edge_group`,
@@ -66,7 +90,18 @@ class AxisymmetricSolver {
   void step();
 
   [[nodiscard]] const AxisymmetricMesh& mesh() const { return mesh_; }
+  /// Effective stresses σ′ of the triangles (Pa, tension positive); equal to
+  /// the total stresses without pore water.
   [[nodiscard]] std::span<const Stress> stresses() const { return stresses_; }
+  /// Pore pressure per node, Pa, compression positive (zeros without pore water).
+  [[nodiscard]] std::span<const double> pore_pressures() const { return pore_pressures_; }
+  /// Total stress of triangle t: σ = σ′ − α p̄_w I, p̄_w its nodes' mean.
+  [[nodiscard]] Stress total_stress(Index triangle) const;
+  /// Time the flow has advanced, s.
+  [[nodiscard]] double flow_time() const { return flow_time_; }
+  /// Flow substeps of the last step (docs/continuum_pile.md §6).
+  [[nodiscard]] int flow_substeps() const { return flow_substeps_; }
+
   /// Sum over `nodes` of the internal nodal forces of the last step (N): for
   /// nodes whose motion is prescribed, the force the body resists it with.
   [[nodiscard]] Point internal_force_sum(std::span<const Index> nodes) const;
@@ -93,13 +128,24 @@ class AxisymmetricSolver {
   /// refinement); an added node takes the old mesh's velocity field, and one
   /// on a boundary edge the velocity components prescribed at both its ends
   /// (interpolated) and the named groups of both, its edge being split in
-  /// the edge groups.
+  /// the edge groups. Pore pressures stay at the nodes; an added node takes
+  /// the old mesh's field, and one on an edge whose ends are both drained
+  /// (held) is held at their interpolated pressure.
   RemeshReport remesh(double minimum_angle_deg = 0.0);
 
  private:
   void move_and_update_stresses();
   void compute_forces_and_masses();
   void update_velocities();
+  /// Per triangle, its value of a volumetric field (the strain increment,
+  /// the plastic mean-stress change) as the volumetric treatment forms it.
+  [[nodiscard]] std::vector<double> volumetric_field(std::span<const double> volumes, std::span<const double> values);
+  /// The flow of the step's time (explicit Darcy, subcycled; docs/continuum_pile.md §6).
+  void advance_flow();
+  /// The pore water's stabilised storage C + τ_w S (docs/continuum_pile.md §6).
+  [[nodiscard]] ProjectionOperator water_operator() const;
+  /// K + α² M_w (the undrained bulk modulus; K without pore water), Pa.
+  [[nodiscard]] double undrained_bulk_modulus() const;
   /// Where an added node lies in the old mesh: its triangle and barycentric weights.
   struct Interpolation {
     Index triangle = 0;
@@ -124,6 +170,12 @@ class AxisymmetricSolver {
   std::vector<std::array<bool, 2>> prescribed_;
   std::vector<Point> prescribed_velocities_;
   std::vector<std::pair<std::string, double>> pressures_;
+  PressureProjection projection_;        ///< the skeleton's nodal volumetric strain
+  PressureProjection water_projection_;  ///< the pore water's pressure change
+  std::vector<double> pore_pressures_;
+  std::vector<bool> pore_pressure_prescribed_;
+  double flow_time_ = 0.0;
+  int flow_substeps_ = 0;
   double unbalanced_force_ratio_ = 0.0;
   long steps_ = 0;
 };

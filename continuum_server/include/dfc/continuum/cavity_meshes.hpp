@@ -22,11 +22,11 @@ struct CavityMeshSpec {
   double strip_height = 0.1;  ///< h, m (strip only)
 };
 
-/// Node groups "inner", "outer", "bottom" (z = 0), "top" (z = h); edge groups
-/// "inner" and "outer" (oriented with the body on the left).
+/// Node and edge groups "inner", "outer", "bottom" (z = 0), "top" (z = h);
+/// edges oriented with the body on the left. With a few radial divisions and
+/// many along z it is also a column (the consolidation test).
 [[nodiscard]] AxisymmetricMesh strip_mesh(const CavityMeshSpec& spec);
-/// Node groups "inner", "outer", "equator" (z = 0), "axis" (r = 0); edge groups
-/// "inner" and "outer".
+/// Node and edge groups "inner", "outer", "equator" (z = 0), "axis" (r = 0).
 [[nodiscard]] AxisymmetricMesh quarter_annulus_mesh(const CavityMeshSpec& spec);
 
 }  // namespace dfc::continuum
