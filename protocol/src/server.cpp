@@ -202,8 +202,11 @@ int serve(const ServerProgram& program, const ServerOptions& options) {
     } catch (const DecodeError& e) {
       reply = session.refuse_undecodable(e);
     }
-    send_message(socket, reply, &routing_id);
+    // Counted before the reply leaves: a client that pings right after the
+    // reply must see it in `handled` (the checker's heartbeat.pong failed
+    // now and then when the count came after the send).
     liveness.end_request(session.step());
+    send_message(socket, reply, &routing_id);
     if (session.advance_statistics().advances != advances_before)
       advance_service_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - last_message).count();
   }
