@@ -37,6 +37,7 @@ RUN_STEPS=${RUN_STEPS:-}
 WORK=${KEEP:-$(mktemp -d)}
 mkdir -p "$WORK"
 PROXY_DATA=$PEERS/data/pack_12k.data
+PROXY_LARGE_DATA=$PEERS/data/pack_50k.data
 
 [ -f "$BUILD/CMakeCache.txt" ] || cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$BUILD" --target dem_throughput coupler -j "$(nproc)" >/dev/null
@@ -96,13 +97,23 @@ if [ -f "$PROXY_DATA" ]; then
     for t in $THREADS; do rate[proxy_$law $t]=$(grep "^threads $t:" "$log" | field 'threads [0-9]+: ([0-9.eE+-]+) particle-steps.*'); done
     grep "^threads " "$log" | sed "s/^/proxy $law /" >>"$report"
   done
+  # The same proxy four times as large (50 176 spheres, about 95 MB: out of
+  # the last-level cache like the real models), to tell the cost of size from
+  # that of the workload.
+  if [ -f "$PROXY_LARGE_DATA" ]; then
+    log=$WORK/proxy50k_linear_pbond.log
+    "$EXE" --data "$PROXY_LARGE_DATA" --law linear_pbond --local-damping 0.7 --threads "$THREADS" --warmup 1000 --steps 1000 >"$log" 2>&1 \
+      || { echo "paper_model.sh: the 50k proxy failed (log $log)" >&2; exit 1; }
+    for t in $THREADS; do rate[proxy50k_linear_pbond $t]=$(grep "^threads $t:" "$log" | field 'threads [0-9]+: ([0-9.eE+-]+) particle-steps.*'); done
+    grep "^threads " "$log" | sed "s/^/proxy50k linear_pbond /" >>"$report"
+  fi
 else
   echo "paper_model.sh: no peer packing at $PROXY_DATA (set PEERS_DIR); the proxy columns are left out" >&2
 fi
 
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN{print (a > 0 && b > 0) ? a / b : "nan"}'; }
 printf "\n%-28s %8s %16s %14s %10s\n" model threads particle-steps/s proxy/real speed-up
-for model in $MODELS proxy_linear_pbond proxy_damage_bond; do
+for model in $MODELS proxy_linear_pbond proxy_damage_bond proxy50k_linear_pbond; do
   for t in $THREADS; do
     r=${rate[$model $t]:-}
     [ -n "$r" ] || continue
@@ -110,6 +121,29 @@ for model in $MODELS proxy_linear_pbond proxy_damage_bond; do
     printf "%-28s %8s %16.3g %14s %10s\n" "$model" "$t" "$r" "$(ratio "${rate[proxy_linear_pbond $t]:-0}" "$r")" "$(ratio "$r" "$one")"
   done
 done
+# Per bond-step: the real models hold more bonds per particle than the proxy
+# (a PCRM body bonds every pair within its bond gap), and a bond costs far
+# more than an idle pair; the rate per bond, against the proxy as large as
+# they are, is the cost of the code on the same work.
+bonds_per_particle() {
+  case $1 in
+    proxy*) grep -m 1 "^${1%%_*} linear_pbond threads" "$report" | sed -nE 's/.* steps of ([0-9]+) particles.* bonds intact ([0-9]+).*/\2 \1/p' | awk '{print $1 / $2}' ;;
+    *) grep -m 1 "^$1 threads" "$report" | field '.*first step [0-9.eE+-]+ pair candidates and ([0-9.eE+-]+) bonds per particle.*' ;;
+  esac
+}
+if [ -n "${rate[proxy50k_linear_pbond 1]:-}${rate[proxy50k_linear_pbond 2]:-}" ]; then
+  printf "\n%-28s %8s %16s %14s %22s\n" model threads bonds/particle bond-steps/s "proxy50k/real per bond"
+  for model in $MODELS proxy_linear_pbond proxy50k_linear_pbond; do
+    b=$(bonds_per_particle "$model")
+    for t in $THREADS; do
+      r=${rate[$model $t]:-}
+      [ -n "$r" ] && [ -n "$b" ] || continue
+      per_bond=$(awk -v r="$r" -v b="$b" 'BEGIN{print r * b}')
+      large=$(awk -v r="${rate[proxy50k_linear_pbond $t]:-0}" -v b="$(bonds_per_particle proxy50k_linear_pbond)" 'BEGIN{print r * b}')
+      printf "%-28s %8s %16.3g %14.3g %22s\n" "$model" "$t" "$b" "$per_bond" "$(ratio "$large" "$per_bond")"
+    done
+  done
+fi
 printf "\n%-28s %s\n" "damage_bond/linear_pbond" "proxy, per particle-step: $(for t in $THREADS; do printf "%s thread(s) %s  " "$t" "$(ratio "${rate[proxy_damage_bond $t]:-0}" "${rate[proxy_linear_pbond $t]:-0}")"; done)"
 for model in $MODELS; do
   s2=$(ratio "${rate[$model 2]:-0}" "${rate[$model 1]:-0}")

@@ -1,0 +1,306 @@
+#!/usr/bin/env python3
+"""The foundation study at several particle sizes (docs/resolution.md): runs its
+variants in parts that survive a stopped machine, and compares the resolutions.
+
+    tools/resolution_study.py run SCENARIO.json [SCENARIO.json ...] --runs DIR
+                                  [--labels g1_p1,g100_p1,...] [--jobs 2] [--bin BUILD/bin]
+    tools/resolution_study.py summary DIR [--out docs/figures/resolution]
+
+run: every variant of each scenario (scenarios/centrifuge_pile_gravity.json is
+S = 3, scenarios/foundation_resolution_S2.json and _S4.json the others) in
+DIR/<scenario name>/<label>/, --jobs at a time (default 2: one DEM thread each
+on a 2-core machine). A variant whose folder holds DONE is skipped; one with a
+checkpoint (run.checkpoint_every, or Ctrl-C) is continued with `coupler run
+--resume`; any other folder is started again. --bin names the folder of the
+coupler and the servers: copy a build's bin/ aside for a study that lasts
+days, so that rebuilding the project does not change the solver under a
+resumed run (the resume would refuse it). Each run's output goes to
+DIR/<scenario name>/<label>.log.
+
+summary: for each DIR/<scenario name>/ with finished runs, the figures and
+summary.json of tools/centrifuge_foundation.py in that folder, then, in --out,
+  resolution_summary.json   per resolution S: particles, d50, steps, wall time,
+                            and each measure of the study per g-level (mean,
+                            min, max over packings); the inertial number; the
+                            verdict per measure (converged or not)
+  force_penetration.png     force against h_1/D_f per g-level, one band
+                            (min-max over packings) per resolution
+  measures_vs_size.png      the study's measures against the particle diameter
+  curves_S<S>.json          the bands of force_penetration.png (so the figures
+                            can be redrawn without the results files)
+
+The inertial number of a run (GDR MiDi 2004; da Cruz et al. 2005) is
+I = gamma_dot d / sqrt(p / rho_s) with the shear rate gamma_dot = v / D_f of
+the foundation, d the mean sphere diameter, p the mean tip pressure
+F_tip / (pi D_f^2 / 4) and rho_s the grain density: quasi-static for
+I < 1e-3. It is reported along the loading (median and largest over
+h_1 = 0.05-1 D_f, after the collapse of the initial peak).
+
+A measure is converged where the two finest resolutions' means differ by no
+more than the larger of their half-ranges (the scatter over packings): a
+difference inside the scatter does not count (docs/resolution.md).
+
+Exit status: 0 done; 1 a run failed; 2 bad input; 3 nothing to summarise.
+"""
+import argparse
+import concurrent.futures
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+TOOLS = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(TOOLS)
+
+
+def expand(coupler, scenario):
+    out = subprocess.run([coupler, "expand", scenario], capture_output=True, text=True)
+    if out.returncode != 0:
+        raise SystemExit(f"resolution_study.py: coupler expand {scenario} failed:\n{out.stderr.strip()}")
+    documents = json.loads(out.stdout)
+    return documents if isinstance(documents, list) else [documents]
+
+
+def plan(coupler, scenarios, runs_dir, labels):
+    """[(label, scenario file to write, document, run folder, log)] in the order given."""
+    jobs = []
+    for scenario in scenarios:
+        with open(scenario) as f:
+            name = json.load(f).get("name") or os.path.splitext(os.path.basename(scenario))[0]
+        for document in expand(coupler, scenario):
+            label = os.path.basename(os.path.normpath(document["output"]["directory"]))
+            if labels and label not in labels:
+                continue
+            folder = os.path.join(runs_dir, name)
+            jobs.append((f"{name}/{label}", os.path.join(folder, label + ".json"), document, os.path.join(folder, label),
+                         os.path.join(folder, label + ".log")))
+    return jobs
+
+
+def run_one(coupler, job, nice):
+    name, scenario_file, document, folder, log = job
+    if os.path.isfile(os.path.join(folder, "DONE")):
+        return name, "done before", 0
+    os.makedirs(os.path.dirname(scenario_file), exist_ok=True)
+    prefix = ["nice", "-n", str(nice)] if nice else []
+    if os.path.isdir(os.path.join(folder, "checkpoint")):
+        command, how = prefix + [coupler, "run", "--resume", folder, "--no-progress"], "resumed"
+    else:
+        if os.path.isdir(folder):
+            shutil.rmtree(folder)  # a run stopped before its first checkpoint: start again
+        with open(scenario_file, "w") as f:
+            json.dump(document, f, indent=2)
+        command, how = prefix + [coupler, "run", scenario_file, "--out", folder, "--no-progress"], "started"
+    start = time.time()
+    with open(log, "a") as out:
+        out.write(f"\n== {how} {time.strftime('%Y-%m-%d %H:%M:%S')}: {' '.join(command)}\n")
+        out.flush()
+        code = subprocess.run(command, stdout=out, stderr=subprocess.STDOUT).returncode
+    if code == 0:
+        with open(os.path.join(folder, "DONE"), "w") as f:
+            f.write(f"{time.time() - start:.1f} s of this part\n")
+    return name, f"{how}, rc {code}, {time.time() - start:.0f} s", code
+
+
+def command_run(args):
+    coupler = os.path.join(args.bin, "coupler")
+    if not os.access(coupler, os.X_OK):
+        print(f"resolution_study.py: no coupler in {args.bin} (--bin: a build's bin folder)", file=sys.stderr)
+        return 2
+    labels = set(args.labels.split(",")) if args.labels else None
+    jobs = plan(coupler, args.scenarios, args.runs, labels)
+    if not jobs:
+        print("resolution_study.py: no variant matches --labels", file=sys.stderr)
+        return 2
+    failed = 0
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for name, what, code in pool.map(lambda job: run_one(coupler, job, args.nice), jobs):
+            print(f"{name}: {what}", flush=True)
+            failed += code != 0
+    return 1 if failed else 0
+
+
+# ---------------------------------------------------------------- summary
+
+MEASURES = [("mean_force_n_0.25_to_1D", "mean force over h$_1$ = 0.25-1 D$_f$ (N)"),
+            ("peak_force_n", "peak force (N)"),
+            ("broken_fraction_at_collapse_beneath_tip", "broken fraction beneath the tip at the collapse")]
+QUASI_STATIC_I = 1e-3  # GDR MiDi (2004): below it the stresses no longer depend on the rate
+
+
+def inertial_numbers(run, grain_density):
+    """I along h_1 = 0.05-1 D_f (module docstring), from the run's tip force."""
+    import numpy as np
+    d = 2.0 * run.mean_radius
+    rate = run.velocity / run.diameter
+    stage = (run.h >= 0.05 * run.diameter) & (run.h <= 1.0 * run.diameter) & (run.tip > 0)
+    pressure = run.tip[stage] / run.area
+    return rate * d / np.sqrt(pressure / grain_density)
+
+
+def load_runs(folder):
+    """The finished foundation runs of one resolution, each with its scale factor,
+    grain density and mean sphere radius (first DEM snapshot)."""
+    import numpy as np
+    sys.path.insert(0, TOOLS)
+    import centrifuge_foundation as cf
+    from dfc_results import open_results
+    runs = cf.find_runs(folder)
+    for run in runs:
+        with open_results(run.path) as r:
+            dem = r.scenario["participants"]["dem"]["config"]
+            run.scale = float(dem.get("upscaling", {}).get("scale_factor", 1.0))
+            run.grain_density = float(dem["particles"].get("density_kg_m3", 2650.0))
+            run.mean_radius = float(np.mean(r.snapshot("dem", 0).arrays["particle_radius"]))
+    return runs
+
+
+def verdict(fine, coarse):
+    """Converged where the two finest resolutions' means differ by no more than
+    the larger of their half-ranges (module docstring)."""
+    if not all(math.isfinite(x.get(k, float("nan"))) for x in (fine, coarse) for k in ("mean", "min", "max")):
+        return {"verdict": "not enough runs"}
+    difference = abs(fine["mean"] - coarse["mean"])
+    scatter = max(fine["max"] - fine["min"], coarse["max"] - coarse["min"]) / 2.0
+    return {"verdict": "converged" if difference <= scatter else "not converged", "difference": difference, "scatter": scatter}
+
+
+def command_summary(args):
+    import numpy as np
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    sys.path.insert(0, TOOLS)
+    import centrifuge_foundation as cf
+    if not os.path.isdir(args.runs):
+        print(f"resolution_study.py: no such folder '{args.runs}'", file=sys.stderr)
+        return 2
+    resolutions = {}
+    for name in sorted(os.listdir(args.runs)):
+        folder = os.path.join(args.runs, name)
+        if not os.path.isdir(folder):
+            continue
+        runs = load_runs(folder)
+        if not runs:
+            continue
+        if subprocess.run([sys.executable, os.path.join(TOOLS, "centrifuge_foundation.py"), folder]).returncode != 0:
+            print(f"resolution_study.py: centrifuge_foundation.py failed on {folder}", file=sys.stderr)
+            return 1
+        with open(os.path.join(folder, "summary.json")) as f:
+            study = json.load(f)
+        groups, _ = cf.study_groups(runs)
+        scale = runs[0].scale
+        entry = {"scenario": name, "scale_factor": scale, "mean_diameter_m": float(np.mean([2 * r.mean_radius for r in runs])),
+                 "particles": cf.spread([float(r.series["dem_particle_count"][-1]) for r in runs]),
+                 "dem_steps": cf.spread([float(r.summary.get("dem_steps", float("nan"))) for r in runs]),
+                 "wall_time_s": cf.spread([float(r.summary.get("wall_time_s", float("nan"))) for r in runs]),
+                 "g_levels": {}, "curves": {}}
+        for g, members in groups.items():
+            level = dict(study["g_levels"][f"{g:g}"])
+            numbers = np.concatenate([inertial_numbers(r, r.grain_density) for r in members])
+            level["inertial_number"] = {"median": float(np.median(numbers)), "max": float(np.max(numbers))} if len(numbers) else {}
+            entry["g_levels"][f"{g:g}"] = level
+            grid = np.linspace(0.0, 1.15, 231) * members[0].diameter
+            mean, low, high = cf.band(members, grid, lambda r: r.force)
+            entry["curves"][f"{g:g}"] = {"h_over_d": (grid / members[0].diameter).tolist(), "mean_n": mean.tolist(),
+                                         "min_n": low.tolist(), "max_n": high.tolist(), "packings": len(members)}
+        resolutions[scale] = entry
+    if not resolutions:
+        print(f"resolution_study.py: no finished foundation run under {args.runs}", file=sys.stderr)
+        return 3
+    os.makedirs(args.out, exist_ok=True)
+    scales = sorted(resolutions, reverse=True)  # coarse to fine
+    for s in scales:
+        with open(os.path.join(args.out, f"curves_S{s:g}.json"), "w") as f:
+            json.dump(resolutions[s].pop("curves"), f)
+    verdicts = {}
+    if len(scales) >= 2:
+        fine, coarse = resolutions[scales[-1]], resolutions[scales[-2]]
+        for g in fine["g_levels"]:
+            if g in coarse["g_levels"]:
+                verdicts[g] = {key: verdict(fine["g_levels"][g].get(key, {}), coarse["g_levels"][g].get(key, {})) for key, _ in MEASURES}
+    ordering = {f"{s:g}": [g for g, _ in sorted(resolutions[s]["g_levels"].items(),
+                                                key=lambda item: item[1]["mean_force_n_0.25_to_1D"]["mean"])] for s in scales}
+    summary = {"resolutions": {f"{s:g}": resolutions[s] for s in scales},
+               "verdicts": {"finest": f"{scales[-1]:g}", "next": f"{scales[-2]:g}" if len(scales) > 1 else None, "by_g_level": verdicts},
+               "g_levels_by_mean_force": ordering, "quasi_static_inertial_number": QUASI_STATIC_I}
+    with open(os.path.join(args.out, "resolution_summary.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    plot_summary(args.out, scales, plt)
+    for s in scales:
+        e = resolutions[s]
+        print(f"S = {s:g}: d = {1e3 * e['mean_diameter_m']:.2f} mm, {e['particles']['mean']:.0f} spheres, "
+              f"{e['dem_steps']['mean']:.3g} steps, {e['wall_time_s']['mean'] / 60:.1f} min per run; g-levels by mean force: {ordering[f'{s:g}']}")
+    print(f"wrote {args.out}/resolution_summary.json, force_penetration.png, measures_vs_size.png")
+    return 0
+
+
+def plot_summary(out, scales, plt):
+    """force_penetration.png and measures_vs_size.png from the files in `out`."""
+    with open(os.path.join(out, "resolution_summary.json")) as f:
+        summary = json.load(f)
+    curves = {s: json.load(open(os.path.join(out, f"curves_S{s:g}.json"))) for s in scales}
+    g_levels = sorted({g for s in scales for g in curves[s]}, key=float)
+    fig, axes = plt.subplots(1, len(g_levels), figsize=(3.6 * len(g_levels), 3.8), sharey=True, squeeze=False)
+    for ax, g in zip(axes[0], g_levels):
+        for s in scales:
+            if g not in curves[s]:
+                continue
+            c = curves[s][g]
+            line, = ax.plot(c["h_over_d"], c["mean_n"], lw=1.2, label=f"S = {s:g} ({c['packings']})")
+            ax.fill_between(c["h_over_d"], c["min_n"], c["max_n"], color=line.get_color(), alpha=0.2, lw=0)
+        ax.set_title(f"{float(g):g} g")
+        ax.set_xlabel("h$_1$ / D$_f$")
+        ax.set_ylim(0, None)
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel("foundation force (N)")
+    axes[0][0].legend(fontsize=8, title="upscaling (packings)", title_fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "force_penetration.png"), dpi=130)
+    plt.close(fig)
+    fig, axes = plt.subplots(1, len(MEASURES), figsize=(4.0 * len(MEASURES), 3.6), squeeze=False)
+    for ax, (key, label) in zip(axes[0], MEASURES):
+        for g in g_levels:
+            xs, ms, lo, hi = [], [], [], []
+            for s in scales:
+                level = summary["resolutions"][f"{s:g}"]["g_levels"].get(g)
+                if level and key in level and "min" in level[key]:
+                    xs.append(1e3 * summary["resolutions"][f"{s:g}"]["mean_diameter_m"])
+                    ms.append(level[key]["mean"])
+                    lo.append(level[key]["mean"] - level[key]["min"])
+                    hi.append(level[key]["max"] - level[key]["mean"])
+            if xs:
+                ax.errorbar(xs, ms, yerr=[lo, hi], marker="o", capsize=3, label=f"{float(g):g} g")
+        ax.set_xlabel("mean sphere diameter d (mm)")
+        ax.set_ylabel(label, fontsize=8)
+        ax.set_xlim(0, None)
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "measures_vs_size.png"), dpi=130)
+    plt.close(fig)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter,
+                                     epilog=__doc__.split("\n\n", 1)[1])
+    sub = parser.add_subparsers(dest="command", required=True)
+    run = sub.add_parser("run", help="run the variants of the scenarios, resuming where checkpoints exist")
+    run.add_argument("scenarios", nargs="+")
+    run.add_argument("--runs", required=True, help="folder of the runs (outside the work tree: they outlive a session)")
+    run.add_argument("--labels", help="comma-separated variant labels to run (default: all)")
+    run.add_argument("--jobs", type=int, default=2)
+    run.add_argument("--nice", type=int, default=0, help="niceness of the runs (0: as this process)")
+    run.add_argument("--bin", default=os.path.join(ROOT, "build", "bin"))
+    summary = sub.add_parser("summary", help="compare the resolutions of finished runs")
+    summary.add_argument("runs")
+    summary.add_argument("--out", default=os.path.join(ROOT, "docs", "figures", "resolution"))
+    args = parser.parse_args(argv)
+    return command_run(args) if args.command == "run" else command_summary(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
