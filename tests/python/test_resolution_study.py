@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Tests of tools/resolution_study.py without running the DEM:
+
+- the verdict: converged only where the two finest resolutions' means differ
+  by no more than the larger half-range over packings;
+- `run` on a stand-in coupler (a script that records its arguments): a new
+  variant is started with its expanded scenario, one with a checkpoint is
+  resumed, one with DONE is skipped, a failed run gets no DONE and makes the
+  exit status 1, and --labels picks variants.
+
+    test_resolution_study.py   (CTest: exit code 77 = skipped when numpy is missing)
+"""
+import json
+import os
+import stat
+import sys
+import tempfile
+import unittest
+
+from dfc_test_support import require_modules
+
+require_modules("numpy")
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import resolution_study  # noqa: E402
+
+FAKE_COUPLER = r'''#!/usr/bin/env python3
+import json, os, sys
+log = os.path.join(os.path.dirname(os.path.abspath(__file__)), "calls.txt")
+with open(log, "a") as f:
+    f.write(" ".join(sys.argv[1:]) + "\n")
+if sys.argv[1] == "expand":
+    print(json.dumps([{"name": "study_" + l, "output": {"directory": "results/study/" + l}, "marker": l} for l in ("a", "b", "c")]))
+elif sys.argv[1] == "run":
+    folder = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv else sys.argv[sys.argv.index("--resume") + 1]
+    os.makedirs(folder, exist_ok=True)
+    sys.exit(3 if folder.endswith("/c") else 0)
+'''
+
+
+class Verdict(unittest.TestCase):
+    def test_a_difference_inside_the_scatter_is_converged(self):
+        fine = {"mean": 10.0, "min": 8.0, "max": 12.0}     # half-range 2
+        coarse = {"mean": 11.5, "min": 11.0, "max": 12.0}  # half-range 0.5
+        self.assertEqual(resolution_study.verdict(fine, coarse)["verdict"], "converged")
+
+    def test_a_difference_beyond_the_scatter_is_not(self):
+        fine = {"mean": 10.0, "min": 9.0, "max": 11.0}
+        coarse = {"mean": 13.0, "min": 12.0, "max": 14.0}
+        result = resolution_study.verdict(fine, coarse)
+        self.assertEqual(result["verdict"], "not converged")
+        self.assertAlmostEqual(result["difference"], 3.0)
+        self.assertAlmostEqual(result["scatter"], 1.0)
+
+    def test_one_packing_is_not_enough(self):
+        self.assertEqual(resolution_study.verdict({"mean": 1.0}, {"mean": 1.0, "min": 0.0, "max": 2.0})["verdict"], "not enough runs")
+
+
+class Run(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.bin = os.path.join(self.tmp.name, "bin")
+        os.makedirs(self.bin)
+        coupler = os.path.join(self.bin, "coupler")
+        with open(coupler, "w") as f:
+            f.write(FAKE_COUPLER)
+        os.chmod(coupler, stat.S_IRWXU)
+        self.scenario = os.path.join(self.tmp.name, "study.json")
+        with open(self.scenario, "w") as f:
+            json.dump({"name": "study"}, f)
+        self.runs = os.path.join(self.tmp.name, "runs")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def calls(self):
+        with open(os.path.join(self.bin, "calls.txt")) as f:
+            return [line.split() for line in f if line.startswith("run")]
+
+    def run_tool(self, *extra):
+        return resolution_study.main(["run", self.scenario, "--runs", self.runs, "--bin", self.bin, "--jobs", "1", *extra])
+
+    def test_start_resume_skip_and_failure(self):
+        folder = os.path.join(self.runs, "study")
+        os.makedirs(os.path.join(folder, "a"))
+        open(os.path.join(folder, "a", "DONE"), "w").close()
+        os.makedirs(os.path.join(folder, "b", "checkpoint"))
+        self.assertEqual(self.run_tool(), 1)  # c fails
+        calls = {call[-2] if "--resume" not in call else call[call.index("--resume") + 1]: call for call in self.calls()}
+        self.assertNotIn(os.path.join(folder, "a"), calls, "a finished variant was run again")
+        self.assertIn("--resume", calls[os.path.join(folder, "b")])
+        started = [c for c in self.calls() if "--out" in c]
+        self.assertEqual(len(started), 1)
+        self.assertEqual(started[0][started[0].index("--out") + 1], os.path.join(folder, "c"))
+        with open(os.path.join(folder, "c.json")) as f:
+            self.assertEqual(json.load(f)["marker"], "c")  # the expanded variant, not the whole scenario
+        self.assertTrue(os.path.isfile(os.path.join(folder, "b", "DONE")))
+        self.assertFalse(os.path.isfile(os.path.join(folder, "c", "DONE")))
+
+    def test_labels_pick_the_variants(self):
+        self.assertEqual(self.run_tool("--labels", "b"), 0)
+        self.assertEqual([c[-2] for c in self.calls()], [os.path.join(self.runs, "study", "b")])
+
+
+if __name__ == "__main__":
+    unittest.main()
