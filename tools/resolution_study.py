@@ -28,6 +28,7 @@ summary.json of tools/centrifuge_foundation.py in that folder, then, in --out,
   measures_vs_size.png      the study's measures against the particle diameter
   curves_S<S>.json          the bands of force_penetration.png (so the figures
                             can be redrawn without the results files)
+  resolution_table.md       the tables of docs/resolution.md
 
 The inertial number of a run (GDR MiDi 2004; da Cruz et al. 2005) is
 I = gamma_dot d / sqrt(p / rho_s) with the shear rate gamma_dot = v / D_f of
@@ -230,12 +231,50 @@ def command_summary(args):
     with open(os.path.join(args.out, "resolution_summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
     plot_summary(args.out, scales, plt)
+    with open(os.path.join(args.out, "resolution_table.md"), "w") as f:
+        f.write(markdown_tables(summary, scales))
     for s in scales:
         e = resolutions[s]
         print(f"S = {s:g}: d = {1e3 * e['mean_diameter_m']:.2f} mm, {e['particles']['mean']:.0f} spheres, "
               f"{e['dem_steps']['mean']:.3g} steps, {e['wall_time_s']['mean'] / 60:.1f} min per run; g-levels by mean force: {ordering[f'{s:g}']}")
     print(f"wrote {args.out}/resolution_summary.json, force_penetration.png, measures_vs_size.png")
     return 0
+
+
+def markdown_tables(summary, scales):
+    """The tables of docs/resolution.md: one row per resolution and g-level, then the verdicts."""
+    def band(x, scale=1.0, digits=1):
+        if not x or "min" not in x:
+            return f"{scale * x.get('mean', float('nan')):.{digits}f}" if x else ""
+        return f"{scale * x['mean']:.{digits}f} ({scale * x['min']:.{digits}f}–{scale * x['max']:.{digits}f})"
+    lines = ["| S | d (mm) | spheres | DEM steps | min per run | g | packings | mean force 0.25–1 D_f (N) | peak force (N) "
+             "| broken beneath tip at collapse | balance without damping (%) | inertial number, median / max |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for s in scales:
+        e = summary["resolutions"][f"{s:g}"]
+        for g, level in sorted(e["g_levels"].items(), key=lambda item: float(item[0])):
+            i = level.get("inertial_number", {})
+            lines.append(f"| {s:g} | {1e3 * e['mean_diameter_m']:.2f} | {e['particles']['mean']:.0f} | {e['dem_steps']['mean']:.3g} "
+                         f"| {e['wall_time_s']['mean'] / 60:.1f} | {float(g):g} | {level['mean_force_n_0.25_to_1D'].get('n', 1)} "
+                         f"| {band(level['mean_force_n_0.25_to_1D'])} | {band(level['peak_force_n'], digits=0)} "
+                         f"| {band(level['broken_fraction_at_collapse_beneath_tip'], digits=2)} "
+                         f"| {band(level['balance_without_damping'], 100.0, 2)} "
+                         f"| {i.get('median', float('nan')):.1e} / {i.get('max', float('nan')):.1e} |")
+    verdicts = summary["verdicts"]
+    if verdicts["by_g_level"]:
+        lines += ["", f"Verdicts, S = {verdicts['finest']} against S = {verdicts['next']} (converged: the means differ by no more than "
+                  "the larger half-range over packings):", "",
+                  "| g | " + " | ".join(label.split(" (")[0] for _, label in MEASURES) + " |",
+                  "|---|" + "---|" * len(MEASURES)]
+        for g, by_measure in sorted(verdicts["by_g_level"].items(), key=lambda item: float(item[0])):
+            cells = []
+            for key, _ in MEASURES:
+                v = by_measure[key]
+                cells.append(v["verdict"] if "difference" not in v else f"{v['verdict']} ({v['difference']:.3g} against {v['scatter']:.3g})")
+            lines.append(f"| {float(g):g} | " + " | ".join(cells) + " |")
+    lines += ["", "g-levels by mean force 0.25–1 D_f, lowest first: " +
+              "; ".join(f"S = {s}: {', '.join(g + ' g' for g in order)}" for s, order in summary["g_levels_by_mean_force"].items())]
+    return "\n".join(lines) + "\n"
 
 
 def plot_summary(out, scales, plt):
