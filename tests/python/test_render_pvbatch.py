@@ -20,31 +20,15 @@ import re
 import shutil
 import subprocess
 import sys
-import tempfile
 
-from dfc_test_support import require_modules
+from dfc_test_support import require_modules, require_pvbatch
 
 COUPLER, SOURCE, OUT = sys.argv[1:4]
 sys.path.insert(0, os.path.join(SOURCE, "tools"))
 import render as render_tool  # noqa: E402
 
-if render_tool.PVBATCH is None:
-    print("SKIPPED: pvbatch (ParaView's Python) is not on PATH; tools/render.py uses its matplotlib path here")
-    sys.exit(77)
-if render_tool.virtual_display_missing():
-    print(f"SKIPPED: Debian's pvbatch renders through X: {render_tool.virtual_display_missing()}")
-    sys.exit(77)
+require_pvbatch(display=True)
 require_modules("numpy", "h5py", "matplotlib")
-# Whether pvbatch starts at all here (a machine whose ParaView or X cannot
-# open a window is not this test's subject): a script that only prints.
-with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as probe:
-    probe.write("print('pvbatch runs')\n")
-started = subprocess.run(([] if os.environ.get("DISPLAY") else ["xvfb-run", "-a"]) + [render_tool.PVBATCH, probe.name],
-                         capture_output=True, text=True)
-os.unlink(probe.name)
-if started.returncode != 0 or "pvbatch runs" not in started.stdout:
-    print(f"SKIPPED: pvbatch does not start here (exit status {started.returncode}): {started.stderr.strip()[-2000:]}")
-    sys.exit(77)
 
 import matplotlib.image  # noqa: E402
 import numpy as np  # noqa: E402

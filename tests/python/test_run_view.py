@@ -22,14 +22,12 @@ exchanges, and the test reads results.xdmf with dfc_results.sidecar and checks:
     test_run_view.py COUPLER SOURCE_DIR OUT_DIR
         (CTest: exit code 77 = skipped when numpy or h5py are missing)
 """
-import json
 import os
-import shutil
 import subprocess
 import sys
 import unittest
 
-from dfc_test_support import require_modules
+from dfc_test_support import bonded_pile_scenario, require_modules
 
 require_modules("numpy", "h5py")
 
@@ -39,22 +37,12 @@ import dfc_results  # noqa: E402
 from dfc_results.sidecar import read_sidecar  # noqa: E402
 
 COUPLER, SOURCE, OUT = sys.argv[1:4] if len(sys.argv) >= 4 else (None, None, None)
-SCENARIO = "tests/e2e/scenarios/pile_bonded_restart.json"
 
 
 class BondedPileView(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        shutil.rmtree(OUT, ignore_errors=True)
-        os.makedirs(OUT)
-        with open(os.path.join(SOURCE, SCENARIO)) as f:
-            scenario = json.load(f)
-        scenario["name"] = "run_view"
-        scenario["run"].update({"exchanges": 120, "snapshot_every": 40, "deadline_s": 300})
-        scenario["participants"]["dem"]["config"]["snapshot"] = {"contents": ["particle_stress", "bonds", "contacts", "walls"]}
-        path = os.path.join(OUT, "run_view.json")
-        with open(path, "w") as f:
-            json.dump(scenario, f, indent=1)
+        path = bonded_pile_scenario(SOURCE, OUT, "run_view")
         cls.folder = os.path.join(OUT, "run")
         run = subprocess.run([COUPLER, "run", path, "--out", cls.folder, "--no-progress"], capture_output=True, text=True)
         if run.returncode != 0:
