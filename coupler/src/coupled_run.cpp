@@ -267,6 +267,20 @@ nlohmann::json program_versions(const std::vector<std::unique_ptr<Participant>>&
   return versions;
 }
 
+/// Each server's walls by name (configure's info.walls, dem_server) into the
+/// results file, in the order of a snapshot's wall_facet_wall index; the DEM
+/// of a coupled run has the coupling surface after them (install_interface).
+void name_walls(ResultsWriter& writer, const std::vector<std::unique_ptr<Participant>>& participants, bool coupling_surface) {
+  for (const auto& p : participants) {
+    const auto walls = p->configured_info().find("walls");
+    if (walls == p->configured_info().end() || !walls->is_array()) continue;
+    std::vector<std::string> names;
+    for (const auto& name : *walls) names.push_back(name.is_string() ? name.get<std::string>() : name.dump());
+    if (coupling_surface && p->spec().slot == "dem") names.emplace_back("coupling surface");
+    writer.name_walls(p->spec().slot, names);
+  }
+}
+
 /// Creates the run's folder and its logs folder; a new run also gets a copy of its scenario there.
 void prepare_output_folder(const fs::path& out_dir, const fs::path& log_dir, const Scenario& scenario, bool resume) {
   std::error_code ec;
@@ -568,6 +582,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     if (resumed) checkpoints.restore(participants, resumed->loop, deadline);
     writer = resumed ? std::make_unique<ResultsWriter>(ResultsWriter::reopen(results_file, resumed->results))
                      : std::make_unique<ResultsWriter>(results_file, scenario.document, program_versions(participants));
+    name_walls(*writer, participants, n_nodes > 0);
     RunRecorder recorder(*writer, declared_units(participants));
     if (resumed) {
       recorder.resume(resumed->recorder);

@@ -15,7 +15,7 @@ exchanges, and the test reads results.xdmf with dfc_results.sidecar and checks:
     positive), and the force vector's part along each line;
   - the walls block holds the pile, which moves by the pile's displacement
     (the monitor pile_displacement_m) from the first snapshot to the last,
-    while the floor stays;
+    while the floor stays, and the file names the moving wall "pile";
   - ./vc render (tools/render.py, the matplotlib path) draws one snapshot of
     the run into a PNG that is not blank.
 
@@ -51,6 +51,7 @@ class BondedPileView(unittest.TestCase):
         with dfc_results.open_results(cls.folder) as results:
             cls.snapshots = results.snapshots("dem")
             cls.series = results.all_series()
+            cls.wall_names = results.wall_names("dem")
 
     def row_of_step(self, step):
         rows = np.flatnonzero(self.series["step_dem"].values == step)
@@ -163,6 +164,10 @@ class BondedPileView(unittest.TestCase):
         moving = [w for w, s in rigid.items() if np.any(s != 0)]
         self.assertEqual(len(still), 1, "the floor")
         self.assertEqual(len(moving), 1, "the pile")
+        # The file names the walls by their index: the one that moves is the pile.
+        self.assertEqual(self.wall_names[moving[0]], "pile", self.wall_names)
+        self.assertEqual(self.wall_names[-1], "coupling surface", self.wall_names)
+        self.assertEqual(len(self.wall_names), int(np.max(wall)) + 1, self.wall_names)
         d0 = self.series["dem_pile_displacement_m"].values[self.row_of_step(self.snapshots[1].step)]
         d1 = self.series["dem_pile_displacement_m"].values[self.row_of_step(self.snapshots[-1].step)]
         self.assertGreater(d1 - d0, 0.0)
