@@ -259,6 +259,27 @@ def write_gif(frames, path):
 
 # pvbatch ----------------------------------------------------------------------
 
+PVBATCH_SIZE = (1600, 1200)  # pixels of a pvbatch picture, width and height
+
+
+def pvbatch_camera(box):
+    """The pvbatch view of the section (x0, x1, z0, z1): the camera looks along
+    +y (x to the right, z up) at the box's centre with a parallel projection;
+    (centre x, centre z, half the picture's height in m)."""
+    x0, x1, z0, z1 = box
+    width, height = PVBATCH_SIZE
+    return 0.5 * (x0 + x1), 0.5 * (z0 + z1), 0.55 * max(z1 - z0, (x1 - x0) * height / width)
+
+
+def pvbatch_pixel(box, x, z):
+    """Where a pvbatch picture of the section `box` draws the point (x, 0, z):
+    (column, row from the top), in pixels."""
+    centre_x, centre_z, scale = pvbatch_camera(box)
+    width, height = PVBATCH_SIZE
+    per_m = 0.5 * height / scale
+    return 0.5 * width + (np.asarray(x) - centre_x) * per_m, 0.5 * height - (np.asarray(z) - centre_z) * per_m
+
+
 PVBATCH_SCRIPT = r'''
 # Drawn by pvbatch from results.xdmf: the spheres the plane y = 0 cuts, whole
 # by their radius and cut open by the plane; the walls and the pile where the
@@ -314,7 +335,7 @@ output.SetLines(lines)
 """
 
 view = CreateRenderView()
-view.ViewSize = [1600, 1200]
+view.ViewSize = job["size"]
 view.OrientationAxesVisibility = 0
 view.Background = [1.0, 1.0, 1.0]
 try:
@@ -359,12 +380,12 @@ shown_title.Color = [0.0, 0.0, 0.0]
 shown_title.FontSize = 14
 shown_title.WindowLocation = "Upper Center"
 
-x0, x1, z0, z1 = job["box"]
+centre_x, centre_z, scale = job["camera"]
 view.CameraParallelProjection = 1
-view.CameraFocalPoint = [0.5 * (x0 + x1), 0.0, 0.5 * (z0 + z1)]
-view.CameraPosition = [0.5 * (x0 + x1), -1.0, 0.5 * (z0 + z1)]
+view.CameraFocalPoint = [centre_x, 0.0, centre_z]
+view.CameraPosition = [centre_x, -1.0, centre_z]
 view.CameraViewUp = [0.0, 0.0, 1.0]
-view.CameraParallelScale = 0.55 * max(z1 - z0, (x1 - x0) * 1200.0 / 1600.0)
+view.CameraParallelScale = scale
 shown_broken = None
 for frame in job["frames"]:
     near.Script = SPHERES % frame["npz"]
@@ -397,7 +418,7 @@ def render_pvbatch(run_dir, out, snapshot, colour):
         job = os.path.join(work, "job.json")
         with open(job, "w") as f:
             json.dump({"xdmf": os.path.join(run_dir, "results.xdmf"), "frames": frames, "limits": section.limits, "label": section.label,
-                       "box": [float(v) for v in section.box]}, f)
+                       "camera": [float(v) for v in pvbatch_camera(section.box)], "size": list(PVBATCH_SIZE)}, f)
         script = os.path.join(work, "section.py")
         with open(script, "w") as f:
             f.write(PVBATCH_SCRIPT)

@@ -25,6 +25,7 @@
 #include "dfc/coupler/run_checkpoint.hpp"
 #include "dfc/coupler/run_recorder.hpp"
 #include "dfc/coupler/serial_coupling_scheme.hpp"
+#include "dfc/coupler/snapshot_estimate.hpp"
 #include "dfc/protocol/message.hpp"
 #include "dfc/protocol/monitor_units.hpp"
 #include "dfc/protocol/progress_monitors.hpp"
@@ -117,15 +118,6 @@ ExchangeTiming choose_timing(const Scenario& scenario, Participant* dem, Partici
   return timing;
 }
 
-/// Bytes per particle of a DEM snapshot, a bound for what dem_server sends:
-/// the arrays SPEC.md §6.4 requires (position and velocity f64 [3], radius
-/// f64, id i64: 64 B) and what its "snapshot" block adds, the particle
-/// stress, bonds and contacts (measured on the bonded pile with every array,
-/// 3.9 bonds per particle: 533.7 B raw, docs/looking_at_a_run.md §4; the
-/// default contents 434.5 B). The required arrays alone understated a bonded
-/// model's snapshot eightfold.
-constexpr double kSnapshotBytesPerParticle = 540.0;
-
 /// MemAvailable of /proc/meminfo in bytes, or nullopt where it cannot be read.
 std::optional<double> available_memory_bytes() {
   std::ifstream meminfo("/proc/meminfo");
@@ -139,9 +131,11 @@ std::optional<double> available_memory_bytes() {
 
 /// Refuses, at configure time and with the key, a model whose snapshots the
 /// coupler could not take: an array over the protocol limit, or more memory
-/// than the machine has. Otherwise a 1e7-particle bed passed `check` and died
-/// with a bare std::bad_alloc at the first snapshot. Only particle counts are
-/// estimated (the DEM's `particle_count` monitor): continua stay far smaller.
+/// than the machine has (snapshot_estimate.hpp: every array the DEM section's
+/// snapshot block asks for, from the counts the server reports). Otherwise a
+/// 1e7-particle bed passed `check` and died with a bare std::bad_alloc at the
+/// first snapshot, and a bonded bed of 3.3 million particles at its first
+/// snapshot with bond arrays over the limit. Continua stay far smaller.
 void check_snapshot_memory(Participant& p, milliseconds deadline) {
   if (!p.has(protocol::capability::snapshot)) return;
   nlohmann::json monitors;
@@ -150,28 +144,8 @@ void check_snapshot_memory(Participant& p, milliseconds deadline) {
   } catch (const std::exception& e) {
     p.fail(e, "reporting its configured state (query)");
   }
-  const double particles = scalar_monitor(monitors, "particle_count");
-  if (!std::isfinite(particles)) return;
-  const std::string key = p.spec().key_path() + ".config" + (p.spec().config.contains("particles") ? ".particles" : "");
-  const auto gib = [](double bytes) {
-    std::ostringstream text;
-    text.precision(3);
-    text << bytes / double(1ULL << 30) << " GiB";
-    return text.str();
-  };
-  const double largest_array = particles * 3 * 8;
-  const double array_limit = double(protocol::Limits{}.max_array_bytes);
-  if (largest_array > array_limit)
-    throw ConfigError(key, "the model has " + std::to_string(static_cast<long long>(particles)) + " particles; their positions in a snapshot take " +
-                               gib(largest_array) + ", over the protocol's " + gib(array_limit) +
-                               " per array (SPEC.md §8): use fewer particles or larger ones");
-  // While a snapshot is received the coupler holds it twice (the frames and
-  // the decoded arrays) and the HDF5 writer a third time.
-  const double needed = 3 * particles * kSnapshotBytesPerParticle;
-  if (const auto available = available_memory_bytes(); available && needed > *available)
-    throw ConfigError(key, "the model has " + std::to_string(static_cast<long long>(particles)) + " particles; taking a snapshot of them needs about " +
-                               gib(needed) + " in the coupler but this machine has " + gib(*available) +
-                               " available: use fewer particles or larger ones, or a machine with more memory");
+  check_snapshot_estimate(estimate_dem_snapshot(p.spec().config, monitors, p.spec().key_path()), double(protocol::Limits{}.max_array_bytes),
+                          available_memory_bytes());
 }
 
 /// The participants of the dem and the continuum slot (null where the scenario has none).
@@ -291,6 +265,20 @@ nlohmann::json program_versions(const std::vector<std::unique_ptr<Participant>>&
                                 {"protocol", p->info().protocol_version},
                                 {"configured", p->configured_info()}};
   return versions;
+}
+
+/// Each server's walls by name (configure's info.walls, dem_server) into the
+/// results file, in the order of a snapshot's wall_facet_wall index; the DEM
+/// of a coupled run has the coupling surface after them (install_interface).
+void name_walls(ResultsWriter& writer, const std::vector<std::unique_ptr<Participant>>& participants, bool coupling_surface) {
+  for (const auto& p : participants) {
+    const auto walls = p->configured_info().find("walls");
+    if (walls == p->configured_info().end() || !walls->is_array()) continue;
+    std::vector<std::string> names;
+    for (const auto& name : *walls) names.push_back(name.is_string() ? name.get<std::string>() : name.dump());
+    if (coupling_surface && p->spec().slot == "dem") names.emplace_back("coupling surface");
+    writer.name_walls(p->spec().slot, names);
+  }
 }
 
 /// Creates the run's folder and its logs folder; a new run also gets a copy of its scenario there.
@@ -594,6 +582,7 @@ int run_scenario(const Scenario& scenario, const RunOptions& options, std::ostre
     if (resumed) checkpoints.restore(participants, resumed->loop, deadline);
     writer = resumed ? std::make_unique<ResultsWriter>(ResultsWriter::reopen(results_file, resumed->results))
                      : std::make_unique<ResultsWriter>(results_file, scenario.document, program_versions(participants));
+    name_walls(*writer, participants, n_nodes > 0);
     RunRecorder recorder(*writer, declared_units(participants));
     if (resumed) {
       recorder.resume(resumed->recorder);

@@ -116,6 +116,7 @@ struct ResultsWriter::State {
   std::vector<XdmfSnapshot> catalogue;
   bool sidecar_stale = true;
   std::set<std::int64_t> polyvertex_counts;  ///< point counts whose Polyvertex connectivity is stored
+  WallNames wall_names;
 
   // The sidecar's Polyvertex topologies read 0..n-1 from the file; one dataset
   // per distinct point count (usually one per run: particle counts rarely change).
@@ -140,7 +141,7 @@ struct ResultsWriter::State {
 
   void write_sidecar(const std::filesystem::path& xdmf) {
     if (!sidecar_stale) return;
-    write_xdmf(xdmf, path.filename().string(), catalogue);
+    write_xdmf(xdmf, path.filename().string(), catalogue, wall_names);
     sidecar_stale = false;
   }
 };
@@ -276,6 +277,16 @@ void ResultsWriter::write_snapshot(const std::string& role, std::int64_t step, d
   if (const std::optional<std::int64_t> bonds = bond_point_count(entry)) s.ensure_polyvertex_connectivity(*bonds);
   ++index;
   s.catalogue.push_back(std::move(entry));
+  s.sidecar_stale = true;
+}
+
+void ResultsWriter::name_walls(const std::string& role, const std::vector<std::string>& names) {
+  State& s = open_state("name_walls");
+  require_plain_name(role, "snapshot role");
+  const h5::Group group = s.file.root().open_group("snapshots").require_group(role);
+  h5::remove_attribute(group.id(), "wall_names");  // a resumed run names them again
+  h5::write_attribute(group.id(), "wall_names", nlohmann::json(names).dump());
+  s.wall_names[role] = names;
   s.sidecar_stale = true;
 }
 

@@ -311,7 +311,7 @@ std::optional<std::int64_t> bond_point_count(const XdmfSnapshot& snapshot) { ret
 
 std::string polyvertex_connectivity_path(std::int64_t points) { return "/xdmf/polyvertex_" + std::to_string(points); }
 
-std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots) {
+std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots, const WallNames& wall_names) {
   // Roles in order of first appearance, so the collections follow the run.
   std::vector<std::string> roles;
   for (const XdmfSnapshot& snapshot : snapshots) {
@@ -342,6 +342,11 @@ std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfS
       // The block's name says what it holds: dem_particles, continuum_grid, dem_bonds, dem_contacts, dem_walls.
       const std::string name = role + (*suffix != '\0' ? std::string(suffix) : "_" + kind);
       out << "    <Grid Name=\"" << escape(name) << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+      if (const auto names = wall_names.find(role); layer == &GridWriter::wall_grid && names != wall_names.end() && !names->second.empty()) {
+        std::string listed;
+        for (std::size_t w = 0; w < names->second.size(); ++w) listed += (w ? "; " : "") + std::to_string(w) + " " + names->second[w];
+        out << "      <Information Name=\"wall_index\" Value=\"" << escape(listed) << "\"/>\n";
+      }
       out << grids.str();
       out << "    </Grid>\n";
     }
@@ -351,8 +356,9 @@ std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfS
   return out.str();
 }
 
-void write_xdmf(const std::filesystem::path& xdmf_path, const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots) {
-  const std::string text = xdmf_document(h5_file_name, snapshots);
+void write_xdmf(const std::filesystem::path& xdmf_path, const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots,
+                const WallNames& wall_names) {
+  const std::string text = xdmf_document(h5_file_name, snapshots, wall_names);
   std::filesystem::path temporary = xdmf_path;
   temporary += ".tmp";
   {

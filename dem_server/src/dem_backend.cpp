@@ -102,6 +102,10 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
                          {"particles", sim().particles().size()},
                          {"particles_removed_by_walls", model_.removed_particles},
                          {"contact_law", config_.contact.info->keyword}};
+  // The walls by name in the order of a snapshot's wall_facet_wall index (a
+  // coupled run adds the coupling surface after them, set_interface_mesh).
+  info["walls"] = nlohmann::json::array();
+  for (const Wall& wall : sim().walls()) info["walls"].push_back(wall.name);
   if (const auto& gen = model_.generation) {
     info["generation"] = {{"rev_particles", gen->rev.spheres.size()},
                           {"rev_bonds", gen->rev.bonds},

@@ -22,7 +22,8 @@ Layout of the file (see docs/outputs.md):
                               and "unit_source" where the unit was only guessed from the name;
                               the group's attribute "columns" lists the columns in recorded order (JSON)
     /snapshots/<role>/<nnnnnn>  one group per snapshot of a participant ("dem", "continuum", ...):
-                              attributes step, time, kind; one dataset per array
+                              attributes step, time, kind; one dataset per array; the role's
+                              group has the attribute wall_names (JSON) where the server names its walls
     /xdmf/...                 index arrays for the ParaView sidecar (not read here)
 
 Needs numpy and h5py (Debian: python3-numpy python3-h5py).
@@ -202,6 +203,12 @@ class Results:
     def snapshots(self, role):
         """Every snapshot of `role`, in the order written."""
         return [self.snapshot(role, index) for index in range(self.snapshot_count(role))]
+
+    def wall_names(self, role):
+        """The names of `role`'s walls, indexed by a snapshot's wall_facet_wall
+        ("floor", "pile", ..., "coupling surface"); [] where the file has none."""
+        names = _json_attribute(self._role_group(role).attrs, "wall_names")
+        return list(names) if isinstance(names, list) else []
 
     # File -------------------------------------------------------------------
 

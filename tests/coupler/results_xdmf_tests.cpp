@@ -265,6 +265,14 @@ TEST(XdmfDocument, WallsAndThePileAreTrianglesWithTheirWallIndex) {
   EXPECT_EQ(count(xml, "r.h5:/snapshots/dem/000001/wall_vertices</DataItem>"), 2U);
   EXPECT_EQ(count(xml, "<Attribute Name=\"wall_index\" AttributeType=\"Scalar\" Center=\"Cell\">"), 2U);
   EXPECT_EQ(count(xml, "Name=\"wall_vertices\""), 0U);  // not a particle attribute (9 rows, not 4)
+  EXPECT_EQ(count(xml, "<Information"), 0U);              // no names given
+  // With the walls' names: one Information on the walls collection that
+  // lists each index with its name, escaped; none for a role without names.
+  const std::string named = xdmf_document("r.h5", snapshots, {{"dem", {"floor", "pile", "a<b"}}, {"continuum", {"x"}}});
+  EXPECT_EQ(nesting_error(named), "");
+  EXPECT_EQ(count(named, "<Information Name=\"wall_index\" Value=\"0 floor; 1 pile; 2 a&lt;b\"/>"), 1U) << named;
+  EXPECT_LT(named.find("<Grid Name=\"dem_walls\""), named.find("<Information"));
+  EXPECT_EQ(count(named, "<Information"), 1U);
   // Facets that are not three integer columns draw no walls.
   dem.arrays[2].shape = {8, 4};
   const std::vector<XdmfSnapshot> bad = {dem};

@@ -15,21 +15,19 @@ exchanges, and the test reads results.xdmf with dfc_results.sidecar and checks:
     positive), and the force vector's part along each line;
   - the walls block holds the pile, which moves by the pile's displacement
     (the monitor pile_displacement_m) from the first snapshot to the last,
-    while the floor stays;
+    while the floor stays, and the file names the moving wall "pile";
   - ./vc render (tools/render.py, the matplotlib path) draws one snapshot of
     the run into a PNG that is not blank.
 
     test_run_view.py COUPLER SOURCE_DIR OUT_DIR
         (CTest: exit code 77 = skipped when numpy or h5py are missing)
 """
-import json
 import os
-import shutil
 import subprocess
 import sys
 import unittest
 
-from dfc_test_support import require_modules
+from dfc_test_support import bonded_pile_scenario, require_modules
 
 require_modules("numpy", "h5py")
 
@@ -39,22 +37,12 @@ import dfc_results  # noqa: E402
 from dfc_results.sidecar import read_sidecar  # noqa: E402
 
 COUPLER, SOURCE, OUT = sys.argv[1:4] if len(sys.argv) >= 4 else (None, None, None)
-SCENARIO = "tests/e2e/scenarios/pile_bonded_restart.json"
 
 
 class BondedPileView(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        shutil.rmtree(OUT, ignore_errors=True)
-        os.makedirs(OUT)
-        with open(os.path.join(SOURCE, SCENARIO)) as f:
-            scenario = json.load(f)
-        scenario["name"] = "run_view"
-        scenario["run"].update({"exchanges": 120, "snapshot_every": 40, "deadline_s": 300})
-        scenario["participants"]["dem"]["config"]["snapshot"] = {"contents": ["particle_stress", "bonds", "contacts", "walls"]}
-        path = os.path.join(OUT, "run_view.json")
-        with open(path, "w") as f:
-            json.dump(scenario, f, indent=1)
+        path = bonded_pile_scenario(SOURCE, OUT, "run_view")
         cls.folder = os.path.join(OUT, "run")
         run = subprocess.run([COUPLER, "run", path, "--out", cls.folder, "--no-progress"], capture_output=True, text=True)
         if run.returncode != 0:
@@ -63,6 +51,7 @@ class BondedPileView(unittest.TestCase):
         with dfc_results.open_results(cls.folder) as results:
             cls.snapshots = results.snapshots("dem")
             cls.series = results.all_series()
+            cls.wall_names = results.wall_names("dem")
 
     def row_of_step(self, step):
         rows = np.flatnonzero(self.series["step_dem"].values == step)
@@ -175,6 +164,10 @@ class BondedPileView(unittest.TestCase):
         moving = [w for w, s in rigid.items() if np.any(s != 0)]
         self.assertEqual(len(still), 1, "the floor")
         self.assertEqual(len(moving), 1, "the pile")
+        # The file names the walls by their index: the one that moves is the pile.
+        self.assertEqual(self.wall_names[moving[0]], "pile", self.wall_names)
+        self.assertEqual(self.wall_names[-1], "coupling surface", self.wall_names)
+        self.assertEqual(len(self.wall_names), int(np.max(wall)) + 1, self.wall_names)
         d0 = self.series["dem_pile_displacement_m"].values[self.row_of_step(self.snapshots[1].step)]
         d1 = self.series["dem_pile_displacement_m"].values[self.row_of_step(self.snapshots[-1].step)]
         self.assertGreater(d1 - d0, 0.0)

@@ -80,6 +80,11 @@ class ResultsWriter {
   void write_snapshot(const std::string& role, std::int64_t step, double time, const std::string& kind,
                       std::span<const dfc::protocol::Array> arrays);
 
+  /// The names of `role`'s walls in the order of wall_facet_wall's index:
+  /// the attribute "wall_names" (JSON list) of /snapshots/<role> and the
+  /// Information "wall_index" of the sidecar's <role>_walls collection.
+  void name_walls(const std::string& role, const std::vector<std::string>& names);
+
   /// Root attribute `name` holding JSON text (e.g. "summary"); replaces an earlier value.
   void set_attribute(const std::string& name, const std::string& json_text);
 

@@ -23,12 +23,16 @@
 // bond_* array of m values as a cell attribute; from a server that sends only
 // bond_position and bond_state, points at the midpoints. Its walls and pile
 // (wall_vertices, wall_facets) form a third, "<role>_walls", of triangles
-// with wall_facet_wall shown as "wall_index".
+// with wall_facet_wall shown as "wall_index"; where the wall names of the
+// role are known, the collection's Information "wall_index" lists them
+// ("0 floor; 1 pile; 2 coupling surface": ParaView does not show it, a
+// reader of the file does).
 //
 // Tensor6 components in XDMF are ordered xx, xy, xz, yy, yz, zz; zone_stress
 // must be written in that order for ParaView's component names to be right.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -66,13 +70,18 @@ struct XdmfSnapshot {
 /// Where the results file holds 0, 1, ..., points-1 (int64) for Polyvertex topologies: "/xdmf/polyvertex_<points>".
 [[nodiscard]] std::string polyvertex_connectivity_path(std::int64_t points);
 
+/// Per role, the name of each wall in the order of wall_facet_wall's index.
+using WallNames = std::map<std::string, std::vector<std::string>>;
+
 /// The XDMF document for `snapshots`, referring to the HDF5 file by `h5_file_name`
 /// (a path relative to the sidecar, normally just the file name).
-[[nodiscard]] std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots);
+[[nodiscard]] std::string xdmf_document(const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots,
+                                        const WallNames& wall_names = {});
 
 /// Writes xdmf_document() to `xdmf_path` atomically (temporary file, then rename),
 /// so a reader never sees half a sidecar. Throws dfc::UserError naming the path
 /// when it cannot be written.
-void write_xdmf(const std::filesystem::path& xdmf_path, const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots);
+void write_xdmf(const std::filesystem::path& xdmf_path, const std::string& h5_file_name, std::span<const XdmfSnapshot> snapshots,
+                const WallNames& wall_names = {});
 
 }  // namespace dfc::coupler
