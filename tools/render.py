@@ -450,7 +450,8 @@ def main(argv=None):
                         help="sphere colour: displacement since the first snapshot (mm) or mean stress (kPa); default displacement")
     parser.add_argument("--renderer", choices=("auto", "matplotlib", "pvbatch"), default="auto",
                         help="default auto: pvbatch where installed (with an X display or xvfb-run), else matplotlib")
-    parser.add_argument("--dpi", type=int, default=200, help="resolution of the PNGs (default 200, for print)")
+    parser.add_argument("--dpi", type=int, default=200,
+                        help="resolution of the matplotlib PNGs (default 200, for print); pvbatch draws 1600 x 1200 pixels whatever it is")
     args = parser.parse_args(argv)
 
     run_dir = run_folder(args.run)
