@@ -9,15 +9,10 @@
 #include <stdexcept>
 
 #include "dfc/continuum/darcy_flow.hpp"
+#include "dfc/continuum/local_damping.hpp"
 #include "dfc/continuum/nodal_average.hpp"
 
 namespace dfc::continuum {
-
-namespace {
-
-double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
-
-}  // namespace
 
 AxisymmetricSolver::AxisymmetricSolver(AxisymmetricMesh mesh, std::shared_ptr<const constitutive::ConstitutiveModel> model,
                                        const Stress& initial_stress, SolverSettings settings)
@@ -70,6 +65,7 @@ void AxisymmetricSolver::apply_pressure(const std::string& edge_group, double pr
 
 void AxisymmetricSolver::step() {
   move_and_update_stresses();
+  if (pile_) pile_->move();
   compute_forces_and_masses();
   update_velocities();
   ++steps_;
@@ -267,7 +263,25 @@ void AxisymmetricSolver::compute_forces_and_masses() {
   }
 }
 
+void AxisymmetricSolver::apply_pile_contact() {
+  const Index nodes = mesh_.nodes.size();
+  pile_contacts_.assign(nodes, NodeContact{});
+  for (Index n = 0; n < nodes; ++n) {
+    ContactNodeState state{mesh_.nodes[n], velocities_[n], velocities_[n], external_forces_[n] - internal_forces_[n],
+                           masses_[n],     settings_.damping, prescribed_[n]};
+    for (Eigen::Index a = 0; a < 2; ++a)
+      state.trial_velocity[a] = prescribed_[n][static_cast<std::size_t>(a)]
+                                    ? prescribed_velocities_[n][a]
+                                    : velocities_[n][a] + damped_velocity_change(state.force[a], velocities_[n][a], masses_[n],
+                                                                                 settings_.damping);
+    pile_contacts_[n] = pile_->contact(state);
+    // The contact force is external: the update below then moves the node onto the face.
+    external_forces_[n] += pile_contacts_[n].force;
+  }
+}
+
 void AxisymmetricSolver::update_velocities() {
+  if (pile_) apply_pile_contact();
   unbalanced_force_ratio_ = measure_unbalanced_force_ratio();
   for (Index n = 0; n < mesh_.nodes.size(); ++n) {
     for (Eigen::Index a = 0; a < 2; ++a) {
@@ -276,9 +290,7 @@ void AxisymmetricSolver::update_velocities() {
         continue;
       }
       const double force = external_forces_[n][a] - internal_forces_[n][a];
-      // Local damping (Cundall 1987): F − α|F| sgn(v), v of the previous half step.
-      const double damped = force - settings_.damping * std::abs(force) * sign(velocities_[n][a]);
-      velocities_[n][a] += damped / masses_[n];
+      velocities_[n][a] += damped_velocity_change(force, velocities_[n][a], masses_[n], settings_.damping);
     }
   }
 }
@@ -299,6 +311,12 @@ double AxisymmetricSolver::measure_unbalanced_force_ratio() const {
 Point AxisymmetricSolver::internal_force_sum(std::span<const Index> nodes) const {
   Point sum = Point::Zero();
   for (const Index n : nodes) sum += internal_forces_[n];
+  return sum;
+}
+
+double AxisymmetricSolver::kinetic_energy() const {
+  double sum = 0.0;
+  for (Index n = 0; n < mesh_.nodes.size(); ++n) sum += 0.5 * masses_[n] * velocities_[n].squaredNorm();
   return sum;
 }
 
