@@ -32,22 +32,37 @@ bool RigidPile::inside(const Point& x, double tip) const {
 }
 
 PileFace RigidPile::face_met(const Point& x, const Point& end) const {
+  // In the pile's frame the node moves from x (the pile at tip_) to end (the
+  // pile at tip_ − velocity). Each face's signed distance outwards, at the
+  // start (d) and at the end (e ≤ 0: inside that face's half-plane). The node
+  // enters through the face whose half-plane it enters last, among those it
+  // was outside of (or on) at the start; without one (it was already inside,
+  // past a corner) through the face it penetrates least.
+  const double next_tip = tip_ - spec_.velocity;
+  const bool bore = spec_.inner_radius > 0.0;
+  const std::array<PileFace, 3> faces{PileFace::annulus, PileFace::inner_shaft, PileFace::outer_shaft};
+  const std::array<double, 3> start{tip_ - x.y(), spec_.inner_radius - x.x(), x.x() - spec_.outer_radius};
+  const std::array<double, 3> finish{next_tip - end.y(), spec_.inner_radius - end.x(), end.x() - spec_.outer_radius};
   // A node on a face stays there to round-off: 1e-9 of the pile's radius is
   // far above the round-off of coordinates and far below any element size.
   const double tolerance = 1e-9 * spec_.outer_radius;
-  if (x.y() <= tip_ + tolerance) return PileFace::annulus;
-  if (spec_.inner_radius > 0.0 && x.x() <= spec_.inner_radius + tolerance) return PileFace::inner_shaft;
-  if (x.x() >= spec_.outer_radius - tolerance) return PileFace::outer_shaft;
-  // Already inside (a node that crossed a corner): the face of least penetration.
-  const double next_tip = tip_ - spec_.velocity;
-  PileFace face = PileFace::annulus;
-  double least = end.y() - next_tip;
-  if (spec_.inner_radius > 0.0 && end.x() - spec_.inner_radius < least) {
-    least = end.x() - spec_.inner_radius;
-    face = PileFace::inner_shaft;
+  PileFace entered = PileFace::none;
+  double latest = -1.0;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if ((f == 1 && !bore) || start[f] < -tolerance) continue;
+    const double before = std::max(0.0, start[f]);
+    const double crossing = before > 0.0 ? before / (before - finish[f]) : 0.0;
+    // Ties (a node on the corner): the annulus, listed first.
+    if (crossing > latest) {
+      latest = crossing;
+      entered = faces[f];
+    }
   }
-  if (spec_.outer_radius - end.x() < least) face = PileFace::outer_shaft;
-  return face;
+  if (entered != PileFace::none) return entered;
+  std::size_t least = 0;
+  for (std::size_t f = 1; f < faces.size(); ++f)
+    if ((f != 1 || bore) && finish[f] > finish[least]) least = f;
+  return faces[least];
 }
 
 NodeContact RigidPile::contact(const ContactNodeState& node) const {

@@ -86,7 +86,7 @@ class RigidPile {
  private:
   /// Whether `x` lies inside or on the pile whose annulus is at `tip`.
   [[nodiscard]] bool inside(const Point& x, double tip) const;
-  /// The face a node at `x` (outside the pile, at tip_) meets when its
+  /// The face a node at `x` (outside the pile, at tip_) enters when its
   /// predicted position `end` is inside the pile after the step.
   [[nodiscard]] PileFace face_met(const Point& x, const Point& end) const;
 
