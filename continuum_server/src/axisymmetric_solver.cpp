@@ -214,8 +214,10 @@ void AxisymmetricSolver::move_and_update_stresses() {
     Stress& stress = stresses_[t];
     rotate_by_jaumann(stress, spin_increments[t]);
     const double mean_before = stress.trace() / 3.0;
+    const Stress before = stress;
     model_->update(constitutive::StrainIncrement{strain_increments[t]}, stress,
                    std::span(model_state_).subspan(t * state_size, state_size));
+    if (!std::isfinite(stress.trace())) throw_failed_update(t, before, strain_increments[t]);
     plastic_mean_change[t] = stress.trace() / 3.0 - mean_before - bulk * strain_increments[t].trace();
   }
   // Models with plastic volume change: the plastic part of the mean-stress
@@ -224,9 +226,33 @@ void AxisymmetricSolver::move_and_update_stresses() {
   // change would smooth the elastic part twice.
   if (model_->needs_mean_stress_averaging() && settings_.volumetric_strain != VolumetricStrain::element) {
     const std::vector<double> smoothed = volumetric_field(volumes, plastic_mean_change);
-    for (Index t = 0; t < triangles; ++t) stresses_[t] += SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]);
+    for (Index t = 0; t < triangles; ++t) {
+      // The smoothing can move a state off a yield surface that has shrunk
+      // to nearly a point (a fully destructured Cam clay): a zero-strain
+      // update returns it; where that fails the unsmoothed state is kept.
+      Stress smoothed_stress = stresses_[t] + SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]);
+      std::vector<double> state(model_state_.begin() + std::ptrdiff_t(t * state_size), model_state_.begin() + std::ptrdiff_t((t + 1) * state_size));
+      model_->update(constitutive::StrainIncrement{SymTensor{}}, smoothed_stress, state);
+      if (!std::isfinite(smoothed_stress.trace())) continue;
+      stresses_[t] = smoothed_stress;
+      std::copy(state.begin(), state.end(), model_state_.begin() + std::ptrdiff_t(t * state_size));
+    }
   }
   advance_flow();
+}
+
+void AxisymmetricSolver::throw_failed_update(Index triangle, const Stress& before, const SymTensor& strain_increment) const {
+  const Triangle& tri = mesh_.triangles[triangle];
+  const Point centroid = (mesh_.nodes[tri[0]] + mesh_.nodes[tri[1]] + mesh_.nodes[tri[2]]) / 3.0;
+  std::ostringstream message;
+  message << "continuum: the constitutive update of triangle " << triangle << " at (r, z) = (" << centroid.x() << ", " << centroid.y()
+          << ") m failed at step " << steps_ + 1 << " (stress before, Pa, rr θθ zz rz: " << before.xx << " " << before.yy << " "
+          << before.zz << " " << before.zx << "; strain increment: " << strain_increment.xx << " " << strain_increment.yy << " "
+          << strain_increment.zz << " " << strain_increment.zx << "; history:";
+  const std::size_t state_size = model_->state_size();
+  for (std::size_t s = 0; s < state_size; ++s) message << " " << model_state_[triangle * state_size + s];
+  message << ")";
+  throw std::runtime_error(message.str());
 }
 
 void AxisymmetricSolver::compute_forces_and_masses() {

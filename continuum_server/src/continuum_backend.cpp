@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "dfc/common/errors.hpp"
@@ -37,6 +38,7 @@ nlohmann::json ContinuumBackend::configure(const nlohmann::json& section) {
   for (const Index n : solver.mesh().node_group("top"))
     if (reference_nodes_[n].x() < solver.pile().spec().inner_radius) bore_surface_.push_back(n);
   peak_force_ = 0.0;
+  remeshes_ = 0;
   nlohmann::json info = {{"dt_suggested", 1.0},
                          {"dt_max", nullptr},  // mass scaling: any step is stable (docs/continuum_pile.md §1)
                          {"nodes", solver.mesh().nodes.size()},
@@ -48,7 +50,7 @@ nlohmann::json ContinuumBackend::configure(const nlohmann::json& section) {
     units[force] = protocol::unit::newton;
   units["pile_displacement_m"] = protocol::unit::metre;
   units["pile_plug_length_m"] = protocol::unit::metre;
-  units["smallest_area_ratio"] = protocol::unit::dimensionless;
+  for (const char* count : {"smallest_area_ratio", "smallest_angle_rad", "remeshes", "triangles"}) units[count] = protocol::unit::dimensionless;
   info[protocol::monitor_units_key] = units;
   info[protocol::progress_monitors_key] = protocol::to_json({{"pile_displacement_m", "pile", 1e3, "mm"},
                                                              {"pile_force_n", "force", 1.0, "N"},
@@ -65,15 +67,30 @@ protocol::AdvanceResult ContinuumBackend::advance(const protocol::AdvanceRequest
     // The pile stops on pile.depth_m exactly.
     const double left = m.stop_depth ? std::max(0.0, *m.stop_depth - pile.penetration()) : m.pile_step;
     pile.set_velocity(std::min(m.pile_step, left));
-    m.solver->step();
+    try {
+      m.solver->step();
+    } catch (const std::runtime_error& e) {
+      throw SolverError(std::string("continuum_server: ") + e.what());
+    }
+    // A sum over all nodes: any non-finite velocity makes it non-finite.
+    if (!std::isfinite(m.solver->kinetic_energy()))
+      throw SolverError("continuum_server: the solution diverged (non-finite velocities) at step " + std::to_string(m.solver->steps_taken()) +
+                        "; lower pile.step_m or refine the mesh at the pile");
     peak_force_ = std::max(peak_force_, m.solver->pile_forces().total());
   }
   const double smallest = m.solver->smallest_area_ratio();
-  if (!(smallest > 0.0) || !std::isfinite(m.solver->unbalanced_force_ratio()))
+  if (!(smallest > 0.0))
     throw SolverError("continuum_server: a triangle inverted (smallest area ratio " + std::to_string(smallest) + ") by step " +
                       std::to_string(m.solver->steps_taken()) +
-                      ": the mesh is too distorted for the penetration; refine the mesh at the pile or lower pile.step_m "
-                      "(remeshing during a run is not yet implemented, docs/continuum_pile.md §8)");
+                      ": the mesh is too distorted for the penetration; refine the mesh at the pile, lower pile.step_m or set "
+                      "mesh.remesh_below_area_ratio");
+  if (m.remesh_below_area_ratio && smallest < *m.remesh_below_area_ratio) {
+    (void)m.solver->remesh(m.remesh_refine_deg);
+    ++remeshes_;
+    // The added nodes: their reference position is where they were added.
+    const std::vector<Point>& nodes = m.solver->mesh().nodes;
+    reference_nodes_.insert(reference_nodes_.end(), nodes.begin() + std::ptrdiff_t(reference_nodes_.size()), nodes.end());
+  }
   return {{}, monitors()};
 }
 
@@ -99,7 +116,10 @@ nlohmann::json ContinuumBackend::monitors() {
           {"pile_plug_length_m", plug_length()},
           // The base's force on the soil (its nodes' internal force; z up).
           {"base_reaction_n", s.internal_force_sum(s.mesh().node_group("bottom")).y()},
-          {"smallest_area_ratio", s.smallest_area_ratio()}};
+          {"smallest_area_ratio", s.smallest_area_ratio()},
+          {"smallest_angle_rad", s.smallest_angle_deg() * std::numbers::pi / 180.0},
+          {"remeshes", remeshes_},
+          {"triangles", s.mesh().triangles.size()}};
 }
 
 std::vector<Array> ContinuumBackend::snapshot(std::string& kind) {

@@ -13,7 +13,7 @@ namespace dfc::continuum {
 
 namespace {
 
-PileMeshSpec read_mesh(ConfigReader cfg, const RigidPileSpec& pile) {
+PileMeshSpec read_mesh(ConfigReader cfg, const RigidPileSpec& pile, PileModel& model) {
   PileMeshSpec spec;
   spec.radius = cfg.number("radius_m");
   spec.height = cfg.number("height_m");
@@ -26,6 +26,8 @@ PileMeshSpec read_mesh(ConfigReader cfg, const RigidPileSpec& pile) {
   spec.vertical_divisions = static_cast<Index>(cfg.integer("vertical_divisions"));
   spec.vertical_ratio = cfg.number("vertical_ratio");
   if (!(spec.radius > pile.outer_radius)) cfg.fail("radius_m", "must exceed pile.outer_radius_m");
+  if (cfg.has("remesh_below_area_ratio")) model.remesh_below_area_ratio = cfg.number("remesh_below_area_ratio");
+  model.remesh_refine_deg = cfg.number("remesh_refine_deg");
   cfg.finish();
   return spec;
 }
@@ -52,7 +54,8 @@ PileModel load_pile_model(const nlohmann::json& section) {
   std::optional<double> stop_depth;
   ConfigReader pile_cfg = root.child("pile");
   RigidPileSpec pile = read_pile(pile_cfg, stop_depth);
-  const PileMeshSpec mesh_spec = read_mesh(root.child("mesh"), pile);
+  PileModel model;
+  const PileMeshSpec mesh_spec = read_mesh(root.child("mesh"), pile, model);
   pile.tip = mesh_spec.height;
   fdm::Material material = fdm::load_fdm_material(root.raw("material"));
 
@@ -87,7 +90,10 @@ PileModel load_pile_model(const nlohmann::json& section) {
   // the support). Under the annulus the pile carries it from the first step.
   if (vertical > 0.0) solver->apply_pressure("surface", vertical);
   solver->set_pile(RigidPile(pile));
-  return PileModel{std::move(solver), stop_depth, pile.velocity};
+  model.solver = std::move(solver);
+  model.stop_depth = stop_depth;
+  model.pile_step = pile.velocity;
+  return model;
 }
 
 std::string continuum_config_help() {

@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include "dfc/continuum/local_damping.hpp"
 
@@ -100,6 +101,19 @@ NodeContact RigidPile::contact(const ContactNodeState& node) const {
     contact.force[t] = tangential;
   }
   return contact;
+}
+
+Point RigidPile::pushed_out(const Point& x) const {
+  const bool bore = spec_.inner_radius > 0.0;
+  const double above_tip = x.y() - tip_;
+  const double from_inner = bore ? x.x() - spec_.inner_radius : std::numeric_limits<double>::infinity();
+  const double from_outer = spec_.outer_radius - x.x();
+  if (!(above_tip > 0.0 && from_inner > 0.0 && from_outer > 0.0)) return x;
+  Point out = x;
+  if (above_tip <= from_inner && above_tip <= from_outer) out.y() = tip_;
+  else if (from_inner <= from_outer) out.x() = spec_.inner_radius;
+  else out.x() = spec_.outer_radius;
+  return out;
 }
 
 PileForces RigidPile::forces_on_pile(std::span<const NodeContact> contacts) {

@@ -89,7 +89,7 @@ const PunchResult& smooth_punch() {
 // punch on an elastic half-space, frictionless: P = 2 E a δ/(1 − ν²).
 // The model is a cylinder R = H = 40a on a smooth base: the base removes
 // about the half-space's settlement at depth H, w(0, H) = P(1 + ν)(3 − 2ν)/(2π E H)
-// (Boussinesq), which stiffens the punch by about a(3 − 2ν)/(π H (1 − ν))
+// (Boussinesq; Poulos & Davis 1974), which stiffens the punch by about a(3 − 2ν)/(π H (1 − ν))
 // = 2.7 %. This mesh (10 elements across the punch, spacing growing 1.2
 // and 1.18) is soft: measured 0.9825 of Sneddon, and 1.0165 with every
 // spacing halved (docs/continuum_pile.md §6.4), which approaches the finite
@@ -110,7 +110,7 @@ TEST(PileContact, FrictionlessPunchStiffnessIsSneddons) {
 // allowance 1e-9); with μ = 0.05 some nodes slide (the bound is reached)
 // and not all (some stick); the friction restrains the surface's inward
 // motion and so stiffens the punch (a bonded punch is stiffer than a
-// frictionless one for ν < 0.5: Spence 1968, doi:10.1007/BF01535380).
+// frictionless one for ν < 0.5: Spence 1968).
 TEST(PileContact, PunchFrictionObeysCoulombAndStiffens) {
   const PunchResult& smooth = smooth_punch();
   const PunchResult rough = punch(0.05);
@@ -175,6 +175,18 @@ TEST(PileContact, ShaftSlidingPastAPressedRingCarriesMuTimesTheLameNormalForce) 
   EXPECT_NEAR(forces.outer_shaft, mu * normal, 1e-9 * mu * normal);
   EXPECT_DOUBLE_EQ(forces.annulus, 0.0);
   EXPECT_DOUBLE_EQ(forces.inner_shaft, 0.0);
+}
+
+// A node a remesh adds inside the pile goes to the face it penetrates least;
+// one outside or on a face stays where it is.
+TEST(PileContact, NodeInsideThePileIsPushedOutThroughTheNearestFace) {
+  const RigidPile pile({0.003, 0.004, 0.1, 0.0, 0.5});
+  EXPECT_EQ(pile.pushed_out(Point(0.0032, 0.1001)), Point(0.0032, 0.1));     // just above the annulus
+  EXPECT_EQ(pile.pushed_out(Point(0.0031, 0.105)), Point(0.003, 0.105));     // near the inner shaft
+  EXPECT_EQ(pile.pushed_out(Point(0.0039, 0.105)), Point(0.004, 0.105));     // near the outer shaft
+  EXPECT_EQ(pile.pushed_out(Point(0.0045, 0.105)), Point(0.0045, 0.105));    // outside
+  EXPECT_EQ(pile.pushed_out(Point(0.0035, 0.0999)), Point(0.0035, 0.0999));  // below the tip
+  EXPECT_EQ(pile.pushed_out(Point(0.004, 0.105)), Point(0.004, 0.105));      // on a face
 }
 
 }  // namespace

@@ -24,7 +24,15 @@ const SectionDeclaration& continuum_mesh() {
                      P::integer("outside_divisions", "elements from r_o to radius_m, graded fine at r_o").integer_within(1).fallback(20),
                      P::number("radial_ratio", "-", "growth of the radial spacing away from the pile's wall").at_least(1.0).fallback(1.15),
                      P::integer("vertical_divisions", "elements from the surface to the base").integer_within(1).fallback(30),
-                     P::number("vertical_ratio", "-", "growth of the vertical spacing downwards from the surface").at_least(1.0).fallback(1.1)},
+                     P::number("vertical_ratio", "-", "growth of the vertical spacing downwards from the surface").at_least(1.0).fallback(1.1),
+                     P::number("remesh_below_area_ratio", "-",
+                               "after an exchange in which a triangle's area fell below this fraction of its area when it was made, "
+                               "re-triangulate the nodes (constrained Delaunay)")
+                         .within(Bounds{0.0, 1.0, true})
+                         .optional("the mesh is never remeshed"),
+                     P::number("remesh_refine_deg", "deg", "with remeshing: refine the new triangulation until no angle is below this (adds nodes)")
+                         .within(Bounds{0.0, 30.0})
+                         .fallback(0.0)},
   };
   return s;
 }

@@ -154,6 +154,9 @@ class AxisymmetricSolver {
 
  private:
   void move_and_update_stresses();
+  /// Throws std::runtime_error naming the triangle whose constitutive update
+  /// gave a non-finite stress, where it is, its stress and strain increment.
+  [[noreturn]] void throw_failed_update(Index triangle, const Stress& before, const SymTensor& strain_increment) const;
   void compute_forces_and_masses();
   void update_velocities();
   /// Adds the pile's contact forces to the external forces (rigid_pile.hpp).

@@ -6,7 +6,11 @@
 // (advance takes no inputs and returns none) and cannot write checkpoints,
 // so it announces only `snapshot`. Each step moves the pile by pile.step_m
 // (quasi-static pseudo-time, mass scaling: any dt is stable, dt only labels
-// the steps) until pile.depth_m. Monitors (SPEC.md §6.3): the shared ones,
+// the steps) until pile.depth_m; after an advance in which a triangle's
+// area fell below mesh.remesh_below_area_ratio of its area when it was made
+// the nodes are re-triangulated (AxisymmetricSolver::remesh, refined to
+// mesh.remesh_refine_deg; an added node's reference position is where it
+// was added). Monitors (SPEC.md §6.3): the shared ones,
 // the pile's force split by face, its penetration, the plug length and the
 // base's reaction. Snapshot: kind "grid" with the nodes in the meridian plane
 // y = 0 (x = r) and the triangles as extra arrays.
@@ -36,6 +40,7 @@ class ContinuumBackend final : public protocol::SolverBackend {
   std::vector<Index> bore_surface_;     ///< surface nodes inside the tube at configure
   double dt_ = 1.0;                     ///< s per step of the last advance (labels the velocities)
   double peak_force_ = 0.0;
+  int remeshes_ = 0;
 };
 
 }  // namespace dfc::continuum

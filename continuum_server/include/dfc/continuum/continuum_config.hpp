@@ -20,6 +20,10 @@ struct PileModel {
   std::optional<double> stop_depth;
   /// The pile's downward displacement per step while it moves, m.
   double pile_step = 0.0;
+  /// Remesh when a triangle's area falls below this fraction of its area at creation.
+  std::optional<double> remesh_below_area_ratio;
+  /// The remesh's refinement bound on the smallest angle, degrees (0: the nodes only).
+  double remesh_refine_deg = 0.0;
 };
 
 /// Builds the solver with its supports (axis: r held; side: r held;

@@ -80,6 +80,11 @@ class RigidPile {
   /// position stays outside the pile's position after the step).
   [[nodiscard]] NodeContact contact(const ContactNodeState& node) const;
 
+  /// `x` if it is outside the pile (or on a face), else its projection on
+  /// the face it penetrates least: for a node a remesh adds on a boundary
+  /// edge that cuts a corner of the pile.
+  [[nodiscard]] Point pushed_out(const Point& x) const;
+
   /// The faces' forces on the pile from the nodes' contacts.
   [[nodiscard]] static PileForces forces_on_pile(std::span<const NodeContact> contacts);
 
