@@ -9,15 +9,10 @@
 #include <stdexcept>
 
 #include "dfc/continuum/darcy_flow.hpp"
+#include "dfc/continuum/local_damping.hpp"
 #include "dfc/continuum/nodal_average.hpp"
 
 namespace dfc::continuum {
-
-namespace {
-
-double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
-
-}  // namespace
 
 AxisymmetricSolver::AxisymmetricSolver(AxisymmetricMesh mesh, std::shared_ptr<const constitutive::ConstitutiveModel> model,
                                        const Stress& initial_stress, SolverSettings settings)
@@ -70,6 +65,7 @@ void AxisymmetricSolver::apply_pressure(const std::string& edge_group, double pr
 
 void AxisymmetricSolver::step() {
   move_and_update_stresses();
+  if (pile_) pile_->move();
   compute_forces_and_masses();
   update_velocities();
   ++steps_;
@@ -218,8 +214,10 @@ void AxisymmetricSolver::move_and_update_stresses() {
     Stress& stress = stresses_[t];
     rotate_by_jaumann(stress, spin_increments[t]);
     const double mean_before = stress.trace() / 3.0;
+    const Stress before = stress;
     model_->update(constitutive::StrainIncrement{strain_increments[t]}, stress,
                    std::span(model_state_).subspan(t * state_size, state_size));
+    if (!std::isfinite(stress.trace())) throw_failed_update(t, before, strain_increments[t]);
     plastic_mean_change[t] = stress.trace() / 3.0 - mean_before - bulk * strain_increments[t].trace();
   }
   // Models with plastic volume change: the plastic part of the mean-stress
@@ -228,9 +226,33 @@ void AxisymmetricSolver::move_and_update_stresses() {
   // change would smooth the elastic part twice.
   if (model_->needs_mean_stress_averaging() && settings_.volumetric_strain != VolumetricStrain::element) {
     const std::vector<double> smoothed = volumetric_field(volumes, plastic_mean_change);
-    for (Index t = 0; t < triangles; ++t) stresses_[t] += SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]);
+    for (Index t = 0; t < triangles; ++t) {
+      // The smoothing can move a state off a yield surface that has shrunk
+      // to nearly a point (a fully destructured Cam clay): a zero-strain
+      // update returns it; where that fails the unsmoothed state is kept.
+      Stress smoothed_stress = stresses_[t] + SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]);
+      std::vector<double> state(model_state_.begin() + std::ptrdiff_t(t * state_size), model_state_.begin() + std::ptrdiff_t((t + 1) * state_size));
+      model_->update(constitutive::StrainIncrement{SymTensor{}}, smoothed_stress, state);
+      if (!std::isfinite(smoothed_stress.trace())) continue;
+      stresses_[t] = smoothed_stress;
+      std::copy(state.begin(), state.end(), model_state_.begin() + std::ptrdiff_t(t * state_size));
+    }
   }
   advance_flow();
+}
+
+void AxisymmetricSolver::throw_failed_update(Index triangle, const Stress& before, const SymTensor& strain_increment) const {
+  const Triangle& tri = mesh_.triangles[triangle];
+  const Point centroid = (mesh_.nodes[tri[0]] + mesh_.nodes[tri[1]] + mesh_.nodes[tri[2]]) / 3.0;
+  std::ostringstream message;
+  message << "continuum: the constitutive update of triangle " << triangle << " at (r, z) = (" << centroid.x() << ", " << centroid.y()
+          << ") m failed at step " << steps_ + 1 << " (stress before, Pa, rr θθ zz rz: " << before.xx << " " << before.yy << " "
+          << before.zz << " " << before.zx << "; strain increment: " << strain_increment.xx << " " << strain_increment.yy << " "
+          << strain_increment.zz << " " << strain_increment.zx << "; history:";
+  const std::size_t state_size = model_->state_size();
+  for (std::size_t s = 0; s < state_size; ++s) message << " " << model_state_[triangle * state_size + s];
+  message << ")";
+  throw std::runtime_error(message.str());
 }
 
 void AxisymmetricSolver::compute_forces_and_masses() {
@@ -267,7 +289,25 @@ void AxisymmetricSolver::compute_forces_and_masses() {
   }
 }
 
+void AxisymmetricSolver::apply_pile_contact() {
+  const Index nodes = mesh_.nodes.size();
+  pile_contacts_.assign(nodes, NodeContact{});
+  for (Index n = 0; n < nodes; ++n) {
+    ContactNodeState state{mesh_.nodes[n], velocities_[n], velocities_[n], external_forces_[n] - internal_forces_[n],
+                           masses_[n],     settings_.damping, prescribed_[n]};
+    for (Eigen::Index a = 0; a < 2; ++a)
+      state.trial_velocity[a] = prescribed_[n][static_cast<std::size_t>(a)]
+                                    ? prescribed_velocities_[n][a]
+                                    : velocities_[n][a] + damped_velocity_change(state.force[a], velocities_[n][a], masses_[n],
+                                                                                 settings_.damping);
+    pile_contacts_[n] = pile_->contact(state);
+    // The contact force is external: the update below then moves the node onto the face.
+    external_forces_[n] += pile_contacts_[n].force;
+  }
+}
+
 void AxisymmetricSolver::update_velocities() {
+  if (pile_) apply_pile_contact();
   unbalanced_force_ratio_ = measure_unbalanced_force_ratio();
   for (Index n = 0; n < mesh_.nodes.size(); ++n) {
     for (Eigen::Index a = 0; a < 2; ++a) {
@@ -276,9 +316,7 @@ void AxisymmetricSolver::update_velocities() {
         continue;
       }
       const double force = external_forces_[n][a] - internal_forces_[n][a];
-      // Local damping (Cundall 1987): F − α|F| sgn(v), v of the previous half step.
-      const double damped = force - settings_.damping * std::abs(force) * sign(velocities_[n][a]);
-      velocities_[n][a] += damped / masses_[n];
+      velocities_[n][a] += damped_velocity_change(force, velocities_[n][a], masses_[n], settings_.damping);
     }
   }
 }
@@ -299,6 +337,12 @@ double AxisymmetricSolver::measure_unbalanced_force_ratio() const {
 Point AxisymmetricSolver::internal_force_sum(std::span<const Index> nodes) const {
   Point sum = Point::Zero();
   for (const Index n : nodes) sum += internal_forces_[n];
+  return sum;
+}
+
+double AxisymmetricSolver::kinetic_energy() const {
+  double sum = 0.0;
+  for (Index n = 0; n < mesh_.nodes.size(); ++n) sum += 0.5 * masses_[n] * velocities_[n].squaredNorm();
   return sum;
 }
 

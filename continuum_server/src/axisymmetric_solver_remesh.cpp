@@ -94,6 +94,10 @@ RemeshReport AxisymmetricSolver::remesh(double minimum_angle_deg) {
   initial_areas_ = std::move(areas);
   triangle_masses_ = std::move(masses);
   report.triangles_after = mesh_.triangles.size();
+  // A node added on a boundary edge that cuts a corner of the pile lies in
+  // it: onto the nearest face, before the contact sees it.
+  if (pile_)
+    for (Index n = node_count; n < mesh_.nodes.size(); ++n) mesh_.nodes[n] = pile_->pushed_out(mesh_.nodes[n]);
   compute_forces_and_masses();
   unbalanced_force_ratio_ = measure_unbalanced_force_ratio();
   return report;

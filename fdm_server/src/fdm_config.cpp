@@ -138,12 +138,7 @@ Material read_material(const nlohmann::json& given) {
 SolverSettings read_settings(ConfigReader& root) {
   SolverSettings settings;
   settings.gravity = to_vec3(root.vec3("gravity_m_s2"));
-  settings.local_damping = sections::fdm_damping().find("local")->default_value.get<double>();
-  if (auto damping = root.optional_child("damping")) {
-    settings.local_damping = damping->number("local");
-    if (!(settings.local_damping < 1.0)) damping->fail("local", "expected a number in [0, 1), got 1 (no net force would remain)");
-    damping->finish();
-  }
+  settings.local_damping = read_local_damping(root);
   settings.mass_scaling = root.boolean("mass_scaling");
   settings.threads = read_thread_count(root);
   return settings;
@@ -196,6 +191,16 @@ CouplingSettings read_coupling(ConfigReader cfg, const Mesh& mesh) {
 }  // namespace
 
 Material load_fdm_material(const nlohmann::json& material) { return read_material(material); }
+
+double read_local_damping(ConfigReader& root) {
+  double local = sections::fdm_damping().find("local")->default_value.get<double>();
+  if (auto damping = root.optional_child("damping")) {
+    local = damping->number("local");
+    if (!(local < 1.0)) damping->fail("local", "expected a number in [0, 1), got 1 (no net force would remain)");
+    damping->finish();
+  }
+  return local;
+}
 
 FdmModel load_fdm_model(const nlohmann::json& section) {
   ConfigReader root(section, "", sections::fdm_server());

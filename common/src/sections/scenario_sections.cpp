@@ -4,6 +4,7 @@
 #include "dfc/common/durations.hpp"
 #include "dfc/common/json_schema.hpp"
 #include "dfc/common/sections/dem_sections.hpp"
+#include "dfc/common/sections/continuum_sections.hpp"
 #include "dfc/common/sections/fdm_sections.hpp"
 
 namespace dfc::sections {
@@ -36,7 +37,7 @@ const SectionDeclaration& scenario_participant() {
       .name = "scenario.participant",
       .doc = "a solver server: one the coupler starts (program) or a running one (endpoint)",
       .parameters = {P::string("program", "server to start: a built server's name (dem_server, fdm_server, rigid_continuum_server, "
-                                          "elastic_reference_server) or a path relative to the scenario file")
+                                          "elastic_reference_server, continuum_server) or a path relative to the scenario file")
                          .optional("endpoint"),
                      P::string("endpoint", "ZeroMQ endpoint of a running server, e.g. tcp://127.0.0.1:5555").optional("program"),
                      P::string("key_file", "with endpoint: the key file the running server was started with (its DFC_KEY_FILE; "
@@ -44,7 +45,7 @@ const SectionDeclaration& scenario_participant() {
                                            "of the servers it starts itself (protocol/SPEC.md §2.1)")
                          .optional("connect without authentication"),
                      P::strings("args", "extra command-line arguments of the program").optional("none"),
-                     P::any_object("config", "the server's section (dem_server --help, fdm_server --help); gravity comes from the top level")},
+                     P::any_object("config", "the server's section (dem_server --help, fdm_server --help, continuum_server --help); gravity comes from the top level")},
   };
   return s;
 }
@@ -161,7 +162,8 @@ nlohmann::json scenario_schema() {
   // sets the servers' gravity itself, so a config must not.
   const auto add_servers = [&](json& participant, bool patch) {
     json server_sections = json::array();
-    for (const auto& [program, section] : {std::pair{"fdm_server", &fdm_server()}, std::pair{"dem_server", &dem_server()}}) {
+    for (const auto& [program, section] : {std::pair{"fdm_server", &fdm_server()}, std::pair{"dem_server", &dem_server()},
+                                                  std::pair{"continuum_server", &continuum_server()}}) {
       defs[section->name] = section_schema(*section, defs);
       const std::string name = patch ? patch_def_name(*section) : section->name;
       server_sections.push_back({{"if", {{"required", {"program"}}, {"properties", {{"program", {{"pattern", std::string("(^|/)") + program + "$"}}}}}}},

@@ -8,6 +8,7 @@
 // (theory/fdm.md §1.8–§1.11), and optionally pore water at the nodes (Biot,
 // explicit Darcy flow).
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "dfc/continuum/delaunay_retriangulation.hpp"
 #include "dfc/continuum/pore_water.hpp"
 #include "dfc/continuum/pressure_projection.hpp"
+#include "dfc/continuum/rigid_pile.hpp"
 #include "dfc/continuum/triangle_kinematics.hpp"
 
 namespace dfc::continuum {
@@ -86,10 +88,27 @@ class AxisymmetricSolver {
   /// applied on the current geometry each step.
   void apply_pressure(const std::string& edge_group, double pressure);
 
+  /// Puts the rigid pile in contact with every node of the soil
+  /// (docs/continuum_pile.md §6; rigid_pile.hpp); it moves with each step.
+  void set_pile(const RigidPile& pile) { pile_ = pile; }
+  [[nodiscard]] bool has_pile() const { return pile_.has_value(); }
+  /// The pile (set_pile first); its velocity may be changed between steps.
+  [[nodiscard]] RigidPile& pile() { return pile_.value(); }
+  [[nodiscard]] const RigidPile& pile() const { return pile_.value(); }
+  /// Per node, its contact with the pile in the last step.
+  [[nodiscard]] std::span<const NodeContact> pile_contacts() const { return pile_contacts_; }
+  /// The soil's force on the pile per face in the last step, N.
+  [[nodiscard]] PileForces pile_forces() const { return RigidPile::forces_on_pile(pile_contacts_); }
+
   /// One step of Δt = 1 (pseudo-time).
   void step();
 
   [[nodiscard]] const AxisymmetricMesh& mesh() const { return mesh_; }
+  /// Nodal velocities, m per step (the displacement of the coming step).
+  [[nodiscard]] std::span<const Point> velocities() const { return velocities_; }
+  /// ½ Σ m v² of the scaled masses (v in m per step): a measure of the
+  /// pseudo-dynamic motion that dies out in equilibrium, not a physical energy.
+  [[nodiscard]] double kinetic_energy() const;
   /// Effective stresses σ′ of the triangles (Pa, tension positive); equal to
   /// the total stresses without pore water.
   [[nodiscard]] std::span<const Stress> stresses() const { return stresses_; }
@@ -135,8 +154,13 @@ class AxisymmetricSolver {
 
  private:
   void move_and_update_stresses();
+  /// Throws std::runtime_error naming the triangle whose constitutive update
+  /// gave a non-finite stress, where it is, its stress and strain increment.
+  [[noreturn]] void throw_failed_update(Index triangle, const Stress& before, const SymTensor& strain_increment) const;
   void compute_forces_and_masses();
   void update_velocities();
+  /// Adds the pile's contact forces to the external forces (rigid_pile.hpp).
+  void apply_pile_contact();
   /// Per triangle, its value of a volumetric field (the strain increment,
   /// the plastic mean-stress change) as the volumetric treatment forms it.
   [[nodiscard]] std::vector<double> volumetric_field(std::span<const double> volumes, std::span<const double> values);
@@ -174,6 +198,8 @@ class AxisymmetricSolver {
   PressureProjection water_projection_;  ///< the pore water's pressure change
   std::vector<double> pore_pressures_;
   std::vector<bool> pore_pressure_prescribed_;
+  std::optional<RigidPile> pile_;
+  std::vector<NodeContact> pile_contacts_;
   double flow_time_ = 0.0;
   int flow_substeps_ = 0;
   double unbalanced_force_ratio_ = 0.0;

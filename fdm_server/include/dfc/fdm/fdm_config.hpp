@@ -31,6 +31,10 @@
 
 #include "dfc/fdm/solver.hpp"
 
+namespace dfc {
+class ConfigReader;
+}
+
 namespace dfc::fdm {
 
 enum class CouplingRole {
@@ -57,6 +61,10 @@ struct FdmModel {
 /// parameters, or a preset with overrides), e.g. for element tests. Throws
 /// dfc::ConfigError with key paths under "material".
 [[nodiscard]] Material load_fdm_material(const nlohmann::json& material);
+
+/// The optional "damping" object of a section (sections::fdm_damping(), also
+/// continuum_server's): the local damping coefficient α in [0, 1).
+[[nodiscard]] double read_local_damping(ConfigReader& root);
 
 /// The --help description of the section, including the constitutive models
 /// of the registry with their parameters and units.
