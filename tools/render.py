@@ -58,6 +58,33 @@ def virtual_display_missing():
     return f"no X display and {' and '.join(missing)} not installed (apt-get install xvfb xauth)" if missing else None
 
 
+def in_virtual_display(command, attempt=0):
+    """`command` run in a virtual X display (xvfb-run) where there is no $DISPLAY.
+    xvfb-run -a alone looks for a free display from :99 up, and two started at
+    once (parallel tests) both take :99; starting the search at a number of
+    this process's own (and of the attempt) keeps them apart."""
+    if os.environ.get("DISPLAY"):
+        return list(command)
+    return ["xvfb-run", "-n", str(100 + (os.getpid() + 7919 * attempt) % 20000), "-a"] + list(command)
+
+
+def run_pvbatch(command, attempts=3):
+    """subprocess.run of a pvbatch command in a virtual display where needed,
+    its messages passed on. Debian's pvbatch in a fresh Xvfb aborts now and
+    then with "bad X server connection" although the server is up (seen in
+    about one start in three on a loaded 2-core machine, never with the same
+    script once it had started): such a start is tried again, in another
+    display, up to `attempts` times in all."""
+    for attempt in range(attempts):
+        drawn = subprocess.run(in_virtual_display(command, attempt), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        sys.stdout.write(drawn.stdout)
+        sys.stderr.write(drawn.stderr)
+        if drawn.returncode == 0 or "bad X server connection" not in drawn.stderr or attempt + 1 == attempts:
+            return drawn
+        print(f"render.py: pvbatch could not connect to its virtual display; trying again ({attempt + 2} of {attempts})", file=sys.stderr)
+    return drawn
+
+
 def auto_renderer():
     """pvbatch where it is installed and can draw (an X display, or xvfb-run for a virtual one), else matplotlib."""
     return "pvbatch" if PVBATCH and virtual_display_missing() is None else "matplotlib"
@@ -426,9 +453,7 @@ def render_pvbatch(run_dir, out, snapshot, colour):
         command = [PVBATCH, script, job]
         if virtual_display_missing():
             raise SystemExit(f"render.py: pvbatch needs an X display: {virtual_display_missing()}; or use --renderer matplotlib")
-        if not os.environ.get("DISPLAY"):
-            command = ["xvfb-run", "-a"] + command
-        drawn = subprocess.run(command)
+        drawn = run_pvbatch(command)
         if drawn.returncode != 0:
             raise SystemExit(f"render.py: pvbatch failed (exit status {drawn.returncode}; its messages above): {' '.join(command)}")
     return with_gif([path for _, path in pictures], snapshot, out)

@@ -36,8 +36,7 @@ def require_pvbatch(display):
         if render.virtual_display_missing():
             print(f"SKIPPED: Debian's pvbatch renders through X: {render.virtual_display_missing()}")
             sys.exit(77)
-        if not os.environ.get("DISPLAY"):
-            command = ["xvfb-run", "-a"] + command
+        command = render.in_virtual_display(command)
     with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as probe:
         probe.write("print('pvbatch runs')\n")
     started = subprocess.run(command + [probe.name], capture_output=True, text=True)
