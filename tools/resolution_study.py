@@ -126,9 +126,10 @@ def command_run(args):
 
 # ---------------------------------------------------------------- summary
 
-MEASURES = [("mean_force_n_0.25_to_1D", "mean force over h$_1$ = 0.25-1 D$_f$ (N)"),
-            ("peak_force_n", "peak force (N)"),
-            ("broken_fraction_at_collapse_beneath_tip", "broken fraction beneath the tip at the collapse")]
+MEASURES = [("mean_force_n_0.25_to_1D", "mean force over h$_1$ = 0.25-1 D$_f$ (N)", "mean force over h₁ = 0.25–1 D_f"),
+            ("peak_force_n", "peak force (N)", "peak force"),
+            ("broken_fraction_at_collapse_beneath_tip", "broken fraction beneath the tip at the collapse",
+             "broken fraction beneath the tip at the collapse")]
 QUASI_STATIC_I = 1e-3  # GDR MiDi (2004): below it the stresses no longer depend on the rate
 
 
@@ -162,8 +163,9 @@ def load_runs(folder):
 def verdict(fine, coarse):
     """Converged where the two finest resolutions' means differ by no more than
     the larger of their half-ranges (module docstring)."""
-    if not all(math.isfinite(x.get(k, float("nan"))) for x in (fine, coarse) for k in ("mean", "min", "max")):
-        return {"verdict": "not enough runs"}
+    if not all(math.isfinite(x.get(k, float("nan"))) for x in (fine, coarse) for k in ("mean", "min", "max")) \
+            or min(fine.get("n", 0), coarse.get("n", 0)) < 2:
+        return {"verdict": "not enough runs"}  # a scatter needs two packings at least
     difference = abs(fine["mean"] - coarse["mean"])
     scatter = max(fine["max"] - fine["min"], coarse["max"] - coarse["min"]) / 2.0
     return {"verdict": "converged" if difference <= scatter else "not converged", "difference": difference, "scatter": scatter}
@@ -222,7 +224,7 @@ def command_summary(args):
         fine, coarse = resolutions[scales[-1]], resolutions[scales[-2]]
         for g in fine["g_levels"]:
             if g in coarse["g_levels"]:
-                verdicts[g] = {key: verdict(fine["g_levels"][g].get(key, {}), coarse["g_levels"][g].get(key, {})) for key, _ in MEASURES}
+                verdicts[g] = {key: verdict(fine["g_levels"][g].get(key, {}), coarse["g_levels"][g].get(key, {})) for key, _, _ in MEASURES}
     ordering = {f"{s:g}": [g for g, _ in sorted(resolutions[s]["g_levels"].items(),
                                                 key=lambda item: item[1]["mean_force_n_0.25_to_1D"]["mean"])] for s in scales}
     summary = {"resolutions": {f"{s:g}": resolutions[s] for s in scales},
@@ -264,11 +266,11 @@ def markdown_tables(summary, scales):
     if verdicts["by_g_level"]:
         lines += ["", f"Verdicts, S = {verdicts['finest']} against S = {verdicts['next']} (converged: the means differ by no more than "
                   "the larger half-range over packings):", "",
-                  "| g | " + " | ".join(label.split(" (")[0] for _, label in MEASURES) + " |",
+                  "| g | " + " | ".join(text for _, _, text in MEASURES) + " |",
                   "|---|" + "---|" * len(MEASURES)]
         for g, by_measure in sorted(verdicts["by_g_level"].items(), key=lambda item: float(item[0])):
             cells = []
-            for key, _ in MEASURES:
+            for key, _, _ in MEASURES:
                 v = by_measure[key]
                 cells.append(v["verdict"] if "difference" not in v else f"{v['verdict']} ({v['difference']:.3g} against {v['scatter']:.3g})")
             lines.append(f"| {float(g):g} | " + " | ".join(cells) + " |")
@@ -305,7 +307,7 @@ def plot_summary(out, scales, plt):
     fig.savefig(os.path.join(out, "force_penetration.png"), dpi=130)
     plt.close(fig)
     fig, axes = plt.subplots(1, len(MEASURES), figsize=(4.0 * len(MEASURES), 3.6), squeeze=False)
-    for ax, (key, label) in zip(axes[0], MEASURES):
+    for ax, (key, label, _) in zip(axes[0], MEASURES):
         for g in g_levels:
             xs, ms, lo, hi = [], [], [], []
             for s in scales:

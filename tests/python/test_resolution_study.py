@@ -41,20 +41,22 @@ elif sys.argv[1] == "run":
 
 class Verdict(unittest.TestCase):
     def test_a_difference_inside_the_scatter_is_converged(self):
-        fine = {"mean": 10.0, "min": 8.0, "max": 12.0}     # half-range 2
-        coarse = {"mean": 11.5, "min": 11.0, "max": 12.0}  # half-range 0.5
+        fine = {"mean": 10.0, "min": 8.0, "max": 12.0, "n": 3}     # half-range 2
+        coarse = {"mean": 11.5, "min": 11.0, "max": 12.0, "n": 3}  # half-range 0.5
         self.assertEqual(resolution_study.verdict(fine, coarse)["verdict"], "converged")
 
     def test_a_difference_beyond_the_scatter_is_not(self):
-        fine = {"mean": 10.0, "min": 9.0, "max": 11.0}
-        coarse = {"mean": 13.0, "min": 12.0, "max": 14.0}
+        fine = {"mean": 10.0, "min": 9.0, "max": 11.0, "n": 2}
+        coarse = {"mean": 13.0, "min": 12.0, "max": 14.0, "n": 2}
         result = resolution_study.verdict(fine, coarse)
         self.assertEqual(result["verdict"], "not converged")
         self.assertAlmostEqual(result["difference"], 3.0)
         self.assertAlmostEqual(result["scatter"], 1.0)
 
     def test_one_packing_is_not_enough(self):
-        self.assertEqual(resolution_study.verdict({"mean": 1.0}, {"mean": 1.0, "min": 0.0, "max": 2.0})["verdict"], "not enough runs")
+        self.assertEqual(resolution_study.verdict({"mean": 1.0}, {"mean": 1.0, "min": 0.0, "max": 2.0, "n": 3})["verdict"], "not enough runs")
+        one = {"mean": 1.0, "min": 1.0, "max": 1.0, "n": 1}  # what spread() gives for a single run
+        self.assertEqual(resolution_study.verdict(one, {"mean": 1.0, "min": 0.0, "max": 2.0, "n": 3})["verdict"], "not enough runs")
 
 
 class Run(unittest.TestCase):
