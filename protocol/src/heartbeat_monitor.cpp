@@ -39,6 +39,7 @@ HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& e
 
 void HeartbeatMonitor::begin_wait() {
   last_life_ = Clock::now();
+  last_poll_ = last_life_;
   // The first ping goes one interval into the wait: the replies of a fast
   // exchange (microseconds) cost no ping and no system call at all.
   last_ping_ = last_life_;
@@ -71,6 +72,18 @@ void HeartbeatMonitor::read_pongs(Clock::time_point now) {
 
 Liveliness HeartbeatMonitor::poll() {
   const auto now = Clock::now();
+  // A client that itself did not run for half the silence timeout (the whole
+  // job stopped and continued, as a batch system's suspend does with SIGSTOP
+  // and SIGCONT; a suspended virtual machine) saw nothing of the server in
+  // that time: the pause counts as neither silence nor stall, and a ping goes
+  // out at once to learn where the server stands now.
+  if (now - last_poll_ > timeouts_.silence / 2) {
+    const auto paused = now - last_poll_;
+    last_life_ += paused;
+    progress_since_ += paused;
+    last_ping_ = now - interval_;
+  }
+  last_poll_ = now;
   if (next_seq_ > first_seq_of_wait_) read_pongs(now);  // only a ping of this wait can be answered now
   if (now - last_ping_ >= interval_) {
     Message ping;

@@ -87,6 +87,43 @@ TEST(HangDetection, StoppedDemServerIsNamedWithinSeconds) { expect_stopped_serve
 
 TEST(HangDetection, StoppedContinuumServerIsNamedWithinSeconds) { expect_stopped_server_found("continuum", "fdm_server"); }
 
+// A batch system that suspends a job stops all its processes (Slurm's
+// `scontrol suspend`: SIGSTOP) and continues them later (SIGCONT). The
+// coupler did not run while its servers did not answer: the pause is no
+// hang, and the run completes.
+TEST(HangDetection, AWholeJobSuspendedAndContinuedCompletes) {
+  const auto dir = fresh_directory("hang_whole_job");
+  const auto log = dir / "coupler.log";
+  auto scenario = nlohmann::json::parse(read_text(e2e_dir() / "scenarios/pile_short.json"));
+  scenario["run"]["exchanges"] = 900;  // about 5 s; the pile meets the floor after about 1 000
+  scenario["run"]["hang_timeout_s"] = 1;
+  scenario["run"]["stall_timeout_s"] = 1;
+  const auto scenario_file = dir / "pile.json";
+  std::ofstream(scenario_file) << scenario.dump(2);
+  const pid_t coupler_pid = start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, log);
+  ProcessReaper reaper;
+  reaper.add(coupler_pid);
+  wait_for_exchanges(log);
+  ::usleep(300'000);
+  std::vector<pid_t> job{coupler_pid};
+  for (const pid_t child : child_pids(coupler_pid)) {
+    reaper.add(child);
+    job.push_back(child);
+  }
+  ASSERT_GE(job.size(), 3u) << read_text(log);  // the coupler and its two servers
+  for (const pid_t pid : job) ASSERT_EQ(::kill(pid, SIGSTOP), 0);
+  ::sleep(4);  // four silence and stall timeouts
+  for (auto pid = job.rbegin(); pid != job.rend(); ++pid) ASSERT_EQ(::kill(*pid, SIGCONT), 0);  // the servers first
+
+  const int status = wait_command(coupler_pid, std::chrono::seconds(120));
+  reaper.forget(coupler_pid);
+  const std::string output = read_text(log);
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_EQ(output.find("stopped answering"), std::string::npos) << output;
+  const auto file = h5::File::open_read_only(dir / "run/results.h5");
+  EXPECT_EQ(h5::read_f64(file, "/timeseries/exchange").size(), 900u);  // every exchange, as if never suspended
+}
+
 /// A continuum-only run of the conformance fixture: `config` its section, `args` its options.
 CommandResult run_fixture(const std::string& name, const nlohmann::json& config, const nlohmann::json& args, const nlohmann::json& run) {
   const auto dir = fresh_directory(name);

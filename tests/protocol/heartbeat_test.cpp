@@ -162,5 +162,50 @@ TEST(HeartbeatMonitor, AServerThatAnswersNoPingIsHungAfterTheTimeout) {
       << monitor.silence_description();
 }
 
+// A batch system suspends a whole job (SIGSTOP to every process, then
+// SIGCONT): the client did not poll while the server did not answer. The
+// pause is no silence; a server that stays silent afterwards still is.
+TEST(HeartbeatMonitor, APauseOfTheClientItselfIsNotSilence) {
+  zmq::context_t context(1);
+  Liveness liveness;
+  HeartbeatResponder responder(context, "inproc://paused.heartbeat", liveness, "1.8", std::nullopt);
+  liveness.begin_request();
+  std::atomic<bool> working{true};
+  std::jthread main_thread([&] {
+    while (working.load()) {
+      work_progress::advance();
+      std::this_thread::sleep_for(20ms);
+    }
+  });
+  HeartbeatMonitor monitor(context, responder.endpoint(), {200ms, 300ms}, std::nullopt);
+  monitor.begin_wait();
+  EXPECT_EQ(monitor.poll(), Liveliness::alive);
+  std::this_thread::sleep_for(700ms);  // the client paused for more than both timeouts
+  EXPECT_EQ(monitor.poll(), Liveliness::alive);
+  const auto until = std::chrono::steady_clock::now() + 600ms;
+  Liveliness found = Liveliness::alive;
+  while (found == Liveliness::alive && std::chrono::steady_clock::now() < until) {
+    found = monitor.poll();
+    std::this_thread::sleep_for(10ms);
+  }
+  EXPECT_EQ(found, Liveliness::alive);  // answering and progressing after the pause
+  working = false;
+
+  zmq::socket_t silent(context, zmq::socket_type::router);  // answers nothing
+  silent.bind("inproc://silent-after-pause.heartbeat");
+  HeartbeatMonitor silent_monitor(context, "inproc://silent-after-pause.heartbeat", {200ms, kNoStallRule}, std::nullopt);
+  silent_monitor.begin_wait();
+  std::this_thread::sleep_for(500ms);
+  EXPECT_EQ(silent_monitor.poll(), Liveliness::alive);  // the pause itself proves nothing
+  const auto start = std::chrono::steady_clock::now();
+  found = Liveliness::alive;
+  while (found == Liveliness::alive && std::chrono::steady_clock::now() - start < 2s) {
+    found = silent_monitor.poll();
+    std::this_thread::sleep_for(10ms);
+  }
+  EXPECT_EQ(found, Liveliness::silent);  // but silence after it is counted again
+  EXPECT_GE(std::chrono::steady_clock::now() - start, 150ms);
+}
+
 }  // namespace
 }  // namespace dfc::protocol

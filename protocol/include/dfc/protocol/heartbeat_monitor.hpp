@@ -43,7 +43,10 @@ class HeartbeatMonitor {
   void begin_wait();
   /// Sends a ping when one is due (every second, or a quarter of the silence
   /// timeout if that is shorter, from one interval into the wait) and reads
-  /// the pongs that arrived. Alive while a pong to a ping of this wait came
+  /// the pongs that arrived. Expects to be called far more often than half the
+  /// silence timeout: a longer gap since the previous poll means the client was
+  /// paused (the whole job stopped and continued), and that gap counts neither
+  /// as silence nor as stall. Alive while a pong to a ping of this wait came
   /// less than the silence timeout ago (or the wait is younger than that)
   /// and, for a server whose pongs carry `progress`, while it changed less
   /// than the stall timeout ago.
@@ -72,6 +75,7 @@ class HeartbeatMonitor {
   std::int64_t first_seq_of_wait_ = 1;  ///< pongs to earlier pings (of an earlier wait) prove nothing now
   Clock::time_point last_ping_{};
   Clock::time_point last_life_{};       ///< the wait's start or its latest pong
+  Clock::time_point last_poll_{};       ///< the previous poll (a longer gap than half the silence: the client was paused)
   std::optional<std::int64_t> progress_;  ///< the latest `progress` a pong of this wait carried; none before 1.8
   Clock::time_point progress_since_{};  ///< when a pong of this wait first carried progress_
   bool ever_answered_ = false;
