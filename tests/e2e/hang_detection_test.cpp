@@ -10,7 +10,9 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -40,23 +42,31 @@ class ProcessReaper {
   std::vector<pid_t> pids_;
 };
 
+/// Starts the short pile (DEM + FDM) in a fresh folder `name` with the run
+/// keys `run` patched in, and waits until its exchanges run; the coupler's
+/// pid goes to `reaper`. Returns the pid and the folder.
+std::pair<pid_t, std::filesystem::path> start_short_pile(const std::string& name, const nlohmann::json& run, ProcessReaper& reaper) {
+  const auto dir = fresh_directory(name);
+  auto scenario = nlohmann::json::parse(read_text(e2e_dir() / "scenarios/pile_short.json"));
+  scenario["run"].update(run);
+  const auto scenario_file = dir / "pile.json";
+  std::ofstream(scenario_file) << scenario.dump(2);
+  const pid_t coupler_pid =
+      start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, dir / "coupler.log");
+  reaper.add(coupler_pid);
+  wait_for_exchanges(dir / "coupler.log");  // the coupler prints its plan line before the first exchange
+  return {coupler_pid, dir};
+}
+
 /// Runs the short pile (DEM + FDM) with deadline_s 1800, stops the server
 /// `victim` ("dem_server" or "fdm_server") with SIGSTOP once the exchanges
 /// run, and checks that the coupler ends the run within 15 s naming it.
 void expect_stopped_server_found(const std::string& slot, const std::string& victim_program) {
-  const auto dir = fresh_directory("hang_" + slot);
-  const auto log = dir / "coupler.log";
-  auto scenario = nlohmann::json::parse(read_text(e2e_dir() / "scenarios/pile_short.json"));
-  scenario["run"]["exchanges"] = 100000;  // surely stopped mid-run
-  scenario["run"]["deadline_s"] = 1800;   // what long studies need: the deadline alone would wait 30 min
-  const auto scenario_file = dir / "pile.json";
-  std::ofstream(scenario_file) << scenario.dump(2);
-  const pid_t coupler_pid = start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, log);
   ProcessReaper reaper;
-  reaper.add(coupler_pid);
-
-  // The coupler prints its plan line before the first exchange.
-  wait_for_exchanges(log);
+  // 100 000 exchanges: surely stopped mid-run; deadline_s 1800, what long
+  // studies need: the deadline alone would wait 30 min.
+  const auto [coupler_pid, dir] = start_short_pile("hang_" + slot, {{"exchanges", 100000}, {"deadline_s", 1800}}, reaper);
+  const auto log = dir / "coupler.log";
   ::usleep(500'000);  // some exchanges done
   pid_t victim = -1;
   for (const pid_t child : child_pids(coupler_pid)) {
@@ -92,18 +102,10 @@ TEST(HangDetection, StoppedContinuumServerIsNamedWithinSeconds) { expect_stopped
 // coupler did not run while its servers did not answer: the pause is no
 // hang, and the run completes.
 TEST(HangDetection, AWholeJobSuspendedAndContinuedCompletes) {
-  const auto dir = fresh_directory("hang_whole_job");
-  const auto log = dir / "coupler.log";
-  auto scenario = nlohmann::json::parse(read_text(e2e_dir() / "scenarios/pile_short.json"));
-  scenario["run"]["exchanges"] = 900;  // about 5 s; the pile meets the floor after about 1 000
-  scenario["run"]["hang_timeout_s"] = 1;
-  scenario["run"]["stall_timeout_s"] = 1;
-  const auto scenario_file = dir / "pile.json";
-  std::ofstream(scenario_file) << scenario.dump(2);
-  const pid_t coupler_pid = start_command({coupler(), "run", scenario_file.string(), "--out", (dir / "run").string(), "--no-progress"}, log);
   ProcessReaper reaper;
-  reaper.add(coupler_pid);
-  wait_for_exchanges(log);
+  // 900 exchanges, about 5 s (the pile meets the floor after about 1 000).
+  const auto [coupler_pid, dir] = start_short_pile("hang_whole_job", {{"exchanges", 900}, {"hang_timeout_s", 1}, {"stall_timeout_s", 1}}, reaper);
+  const auto log = dir / "coupler.log";
   ::usleep(300'000);
   std::vector<pid_t> job{coupler_pid};
   for (const pid_t child : child_pids(coupler_pid)) {

@@ -92,6 +92,24 @@ Liveliness poll_for(HeartbeatMonitor& monitor, std::chrono::milliseconds how_lon
   return Liveliness::alive;
 }
 
+/// A server's main thread that keeps working: it advances the work counter
+/// every 20 ms until destroyed.
+class ProgressingMainThread {
+ public:
+  ProgressingMainThread()
+      : thread_([this] {
+          while (working_.load()) {
+            work_progress::advance();
+            std::this_thread::sleep_for(20ms);
+          }
+        }) {}
+  ~ProgressingMainThread() { working_ = false; }
+
+ private:
+  std::atomic<bool> working_{true};
+  std::jthread thread_;
+};
+
 constexpr auto kNoStallRule = std::chrono::hours(1);
 
 TEST(HeartbeatMonitor, ABusyServerThatAnswersIsAlive) {
@@ -126,16 +144,9 @@ TEST(HeartbeatMonitor, AServerWhoseProgressMovesIsNotStalled) {
   Liveness liveness;
   HeartbeatResponder responder(context, "inproc://progressing.heartbeat", liveness, "1.8", std::nullopt);
   liveness.begin_request();
-  std::atomic<bool> working{true};
-  std::jthread main_thread([&] {
-    while (working.load()) {
-      work_progress::advance();
-      std::this_thread::sleep_for(20ms);
-    }
-  });
+  const ProgressingMainThread main_thread;
   HeartbeatMonitor monitor(context, responder.endpoint(), {200ms, 200ms}, std::nullopt);
   EXPECT_EQ(poll_for(monitor, 1s), Liveliness::alive);  // five stall timeouts
-  working = false;
 }
 
 // A server before 1.8 sends no progress: only the silence rule holds it.
@@ -170,13 +181,7 @@ TEST(HeartbeatMonitor, APauseOfTheClientItselfIsNotSilence) {
   Liveness liveness;
   HeartbeatResponder responder(context, "inproc://paused.heartbeat", liveness, "1.8", std::nullopt);
   liveness.begin_request();
-  std::atomic<bool> working{true};
-  std::jthread main_thread([&] {
-    while (working.load()) {
-      work_progress::advance();
-      std::this_thread::sleep_for(20ms);
-    }
-  });
+  const ProgressingMainThread main_thread;
   HeartbeatMonitor monitor(context, responder.endpoint(), {200ms, 300ms}, std::nullopt);
   monitor.begin_wait();
   EXPECT_EQ(monitor.poll(), Liveliness::alive);
@@ -189,7 +194,6 @@ TEST(HeartbeatMonitor, APauseOfTheClientItselfIsNotSilence) {
     std::this_thread::sleep_for(10ms);
   }
   EXPECT_EQ(found, Liveliness::alive);  // answering and progressing after the pause
-  working = false;
 
   zmq::socket_t silent(context, zmq::socket_type::router);  // answers nothing
   silent.bind("inproc://silent-after-pause.heartbeat");
