@@ -307,6 +307,7 @@ def plot_summary(out, scales, plt):
     fig.savefig(os.path.join(out, "force_penetration.png"), dpi=130)
     plt.close(fig)
     fig, axes = plt.subplots(1, len(MEASURES), figsize=(4.0 * len(MEASURES), 3.6), squeeze=False)
+    widest = 1e3 * max(summary["resolutions"][f"{s:g}"]["mean_diameter_m"] for s in scales)
     for ax, (key, label, _) in zip(axes[0], MEASURES):
         for g in g_levels:
             xs, ms, lo, hi = [], [], [], []
@@ -321,7 +322,7 @@ def plot_summary(out, scales, plt):
                 ax.errorbar(xs, ms, yerr=[lo, hi], marker="o", capsize=3, label=f"{float(g):g} g")
         ax.set_xlabel("mean sphere diameter d (mm)")
         ax.set_ylabel(label, fontsize=8)
-        ax.set_xlim(0, None)
+        ax.set_xlim(0, 1.15 * widest)
         ax.grid(alpha=0.3)
     axes[0][0].legend(fontsize=8)
     fig.tight_layout()
