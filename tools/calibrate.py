@@ -221,7 +221,11 @@ def main(argv=None):
     if args.jobs < 1:
         print(f"calibrate: --jobs {args.jobs}: give at least 1", file=sys.stderr)
         return 2
-    summary = calibrate(calibration, sample, base_contact, coupler, out, jobs=args.jobs)
+    try:
+        summary = calibrate(calibration, sample, base_contact, coupler, out, jobs=args.jobs)
+    except CalibrationError as e:  # a run that cannot measure a target: the cache keeps what ran
+        print(f"calibrate: error in {args.calibration}: {e}", file=sys.stderr)
+        return 2
     print(f"{'converged' if summary['converged'] else 'NOT converged'} after {summary['evaluations']} evaluations, "
           f"{summary['dem_runs']} DEM runs ({summary['dem_runs_this_session']} new), {summary['session_wall_s']:.0f} s; "
           f"{os.path.join(out, 'summary.md')}, material {summary['material']}")

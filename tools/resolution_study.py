@@ -29,6 +29,10 @@ summary.json of tools/centrifuge_foundation.py in that folder, then, in --out,
   curves_S<S>.json          the bands of force_penetration.png (so the figures
                             can be redrawn without the results files)
   resolution_table.md       the tables of docs/resolution.md
+A resolution already in --out (resolution_summary.json and its curves_S<S>.json)
+whose runs are not under DIR is kept as it is, so a study whose machine was
+lost keeps the resolutions it finished: only the resolutions with runs under
+DIR are recomputed (--replace drops the others).
 
 The inertial number of a run (GDR MiDi 2004; da Cruz et al. 2005) is
 I = gamma_dot d / sqrt(p / rho_s) with the shear rate gamma_dot = v / D_f of
@@ -171,6 +175,24 @@ def verdict(fine, coarse):
     return {"verdict": "converged" if difference <= scatter else "not converged", "difference": difference, "scatter": scatter}
 
 
+def earlier_resolutions(out):
+    """The resolutions of an earlier summary in OUT, each with its curves, keyed by S;
+    {} where there is none (module docstring)."""
+    path = os.path.join(out, "resolution_summary.json")
+    if not os.path.isfile(path):
+        return {}
+    with open(path) as f:
+        earlier = json.load(f).get("resolutions", {})
+    kept = {}
+    for key, entry in earlier.items():
+        curves = os.path.join(out, f"curves_S{float(key):g}.json")
+        if not os.path.isfile(curves):
+            continue  # the figures cannot be redrawn without the bands: recompute or drop
+        with open(curves) as f:
+            kept[float(key)] = dict(entry, curves=json.load(f))
+    return kept
+
+
 def command_summary(args):
     import numpy as np
     import matplotlib
@@ -211,6 +233,11 @@ def command_summary(args):
             entry["curves"][f"{g:g}"] = {"h_over_d": (grid / members[0].diameter).tolist(), "mean_n": mean.tolist(),
                                          "min_n": low.tolist(), "max_n": high.tolist(), "packings": len(members)}
         resolutions[scale] = entry
+    if not args.replace:
+        for scale, entry in earlier_resolutions(args.out).items():
+            if scale not in resolutions:
+                print(f"S = {scale:g}: kept from {args.out}/resolution_summary.json (its runs are not under {args.runs})")
+                resolutions[scale] = entry
     if not resolutions:
         print(f"resolution_study.py: no finished foundation run under {args.runs}", file=sys.stderr)
         return 3
@@ -344,6 +371,8 @@ def main(argv=None):
     summary = sub.add_parser("summary", help="compare the resolutions of finished runs")
     summary.add_argument("runs")
     summary.add_argument("--out", default=os.path.join(ROOT, "docs", "figures", "resolution"))
+    summary.add_argument("--replace", action="store_true",
+                         help="drop the resolutions of an earlier summary in --out whose runs are not under RUNS")
     args = parser.parse_args(argv)
     return command_run(args) if args.command == "run" else command_summary(args)
 

@@ -8,6 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/constitutive/material_point_driver.hpp"
@@ -216,6 +219,51 @@ TEST(StructuredCamClay, InitialStressOutsideTheSurfaceRaisesPsToNormalConsolidat
   model.initialize_state(SymTensor::isotropic(-1e6), state);
   EXPECT_EQ(state[kPs], m.ps0);
   EXPECT_THROW(model.initialize_state(SymTensor::isotropic(1e6), state), UserError);  // beyond the tensile strength
+}
+
+// The damage-bond chalk is calibrated (scenarios/calibration/damagebond_chalk_snw.json,
+// docs/calibration_automatic.md §5) to the strengths this model gives with Table 2: on the
+// dry side of the ellipse the first yield is the peak (the bonds degrade and the
+// surface shrinks after it), so each target is the root of the path meeting f = 0.
+// Integrated here along each path to 1 % axial strain, the largest q must be that
+// root (within one increment's elastic stress, E |Δε|), and the file's targets must
+// be those peaks (rounded to 1 kPa in the file: 0.1 %).
+TEST(StructuredCamClay, TheChalkCalibrationTargetsAreThePeaksOfTableTwoOnTheirPaths) {
+  const StructuredCamClayParameters m = chalk();
+  const StructuredCamClayModel model(m);
+  const CamClayHardening h{m.ps0, m.pt0};
+  const double young = 9.0 * m.moduli.bulk * m.moduli.shear / (3.0 * m.moduli.bulk + m.moduli.shear);
+  constexpr double kIncrement = 2e-6;
+  const auto peak_q = [&](double confinement, double direction) {
+    MaterialPointDriver driver(model, SymTensor::isotropic(-confinement));
+    double peak = 0.0;
+    for (int step = 0; step < 5000; ++step) {  // 1 % axial strain
+      driver.triaxial_step(direction * kIncrement);
+      peak = std::max(peak, driver.deviatoric_stress());
+    }
+    return peak;
+  };
+  const double ucs = peak_q(0.0, -1.0);
+  const double q100 = peak_q(100e3, -1.0);
+  const double q300 = peak_q(300e3, -1.0);
+  const double tension = peak_q(0.0, +1.0);  // uniaxial tension: p = -q/3
+  EXPECT_NEAR(ucs, cam_clay_yield_q_on_path(0.0, 3.0, h, m), young * kIncrement);
+  EXPECT_NEAR(q100, cam_clay_yield_q_on_path(100e3, 3.0, h, m), young * kIncrement);
+  EXPECT_NEAR(q300, cam_clay_yield_q_on_path(300e3, 3.0, h, m), young * kIncrement);
+  EXPECT_NEAR(tension, cam_clay_yield_q_on_path(0.0, -3.0, h, m), young * kIncrement);
+
+  std::ifstream file(DFC_SOURCE_DIR "/scenarios/calibration/damagebond_chalk_snw.json");
+  ASSERT_TRUE(file.good());
+  const nlohmann::json targets = nlohmann::json::parse(file).at("targets");
+  EXPECT_NEAR(targets.at("ucs_pa").at("value").get<double>(), ucs, 1e-3 * ucs);
+  EXPECT_NEAR(targets.at("tensile_strength_pa").at("value").get<double>(), tension, 1e-3 * tension);
+  EXPECT_NEAR(targets.at("young_modulus_pa").at("value").get<double>(), young, 1e-9 * young);
+  for (const auto& peak : targets.at("triaxial_peak_deviator_pa")) {
+    const double confinement = peak.at("confinement_pa").get<double>();
+    ASSERT_TRUE(confinement == 100e3 || confinement == 300e3);
+    const double expected = confinement == 100e3 ? q100 : q300;
+    EXPECT_NEAR(peak.at("value").get<double>(), expected, 1e-3 * expected);
+  }
 }
 
 }  // namespace

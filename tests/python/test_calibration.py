@@ -43,7 +43,7 @@ import calibrate  # noqa: E402
 from calibration import scaling, sensitivity  # noqa: E402
 from calibration.calibration_file import CalibrationError, FreeParameter, read_targets  # noqa: E402
 from calibration.evaluation_cache import run_key  # noqa: E402
-from calibration.evaluation import TENSION, UNCONFINED, experiments_needed, target_value  # noqa: E402
+from calibration.evaluation import TENSION, UNCONFINED, Evaluator, experiments_needed, target_value  # noqa: E402
 from calibration.experiments import measure, measure_tension  # noqa: E402
 
 FAKE_COUPLER = os.path.join(HERE, "fake_coupler.py")
@@ -62,6 +62,15 @@ def softbond_file(**changes):
     }
     spec.update(changes)
     return spec
+
+
+def prepared(spec):
+    """calibrate.prepare of a calibration file holding SPEC (paths in it absolute)."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "c.json")
+        with open(path, "w") as f:
+            json.dump(spec, f)
+        return calibrate.prepare(path)
 
 
 def read_json(path):
@@ -220,11 +229,7 @@ class Experiments(unittest.TestCase):
                 "sample": {"scenario": os.path.join(ROOT, "scenarios", "triaxial_damagebond_samecell.json"), "variant": "S4",
                            "packings": [5, 6, 7]},
                 "free": {"ten_pa": {"start": 1e6, "min": 1e5, "max": 1e7}}}
-        with tempfile.TemporaryDirectory() as folder:
-            path = os.path.join(folder, "c.json")
-            with open(path, "w") as f:
-                json.dump(spec, f)
-            calibration, sample, contact = calibrate.prepare(path)
+        calibration, sample, contact = prepared(spec)
         self.assertTrue(sample.periodic)
         self.assertEqual(contact["com_pa"], 5e7)                 # from the sample's contact block
         scenario = sample.scenario_for(dict(contact, ten_pa=2e6), 6, 3e5)
@@ -254,11 +259,7 @@ class Experiments(unittest.TestCase):
                 "free": {"sb_ten_pa": {"start": 4e5, "min": 1e4, "max": 1e8}},
                 "targets": {"tensile_strength_pa": {"value": 1e5}, "tensile_to_compressive_ratio": {"value": 0.1},
                             "ucs_pa": {"value": 1e6}}}
-        with tempfile.TemporaryDirectory() as folder:
-            path = os.path.join(folder, "c.json")
-            with open(path, "w") as f:
-                json.dump(spec, f)
-            calibration, sample, contact = calibrate.prepare(path)
+        calibration, sample, contact = prepared(spec)
         self.assertEqual(experiments_needed(calibration.targets), [UNCONFINED, TENSION])   # each once
         rate = sample.scenario["participants"]["dem"]["config"]["periodic"]["loading"]["axial_strain_rate_per_s"]
         pulled = sample.scenario_for(contact, 2, 0.0, tension=True)["participants"]["dem"]["config"]["periodic"]["loading"]
@@ -268,6 +269,27 @@ class Experiments(unittest.TestCase):
         measured = {UNCONFINED: {"peak_pa": 8e5}, TENSION: {"tensile_strength_pa": 1e5}}
         values = {t.quantity: target_value(t, measured) for t in calibration.targets}
         self.assertEqual(values, {"tensile_strength_pa": 1e5, "tensile_to_compressive_ratio": 0.125, "ucs_pa": 8e5})
+
+    def test_a_target_no_run_could_measure_stops_the_calibration_with_the_fix(self):
+        # An early peak leaves fewer than two points below 30 % of it: no modulus (NaN).
+        # Fed to Nelder-Mead, a NaN objective wanders; the evaluation must stop and
+        # say how to record more points.
+        spec = {"law": "damage_bond", "targets": {"young_modulus_pa": {"value": 1e9}},
+                "sample": {"scenario": os.path.join(ROOT, "scenarios", "triaxial_damagebond_samecell.json"), "variant": "S4",
+                           "packings": [5, 6, 7]},
+                "free": {"bond_emod_pa": {"start": 1e9, "min": 1e7, "max": 1e11}}}
+        calibration, sample, contact = prepared(spec)
+
+        class Cache:  # every run already done: packing 6's modulus unmeasurable
+            def get(self, scenario):
+                seed = scenario["participants"]["dem"]["config"]["particles"]["seed"]
+                return {"key": str(seed), "measured": {"peak_pa": 1e6, "young_modulus_pa": float("nan") if seed == 6 else 1e9}}
+
+        evaluator = Evaluator(calibration, sample, contact, Cache(), "no-coupler", "no-folder")
+        with self.assertRaises(CalibrationError) as raised:
+            evaluator.evaluate({"bond_emod_pa": 1e9})
+        self.assertIn("targets.young_modulus_pa: packing 6", str(raised.exception))
+        self.assertIn("exchange_interval", str(raised.exception))
 
 
 class CacheAndSensitivity(unittest.TestCase):

@@ -59,6 +59,24 @@ class Verdict(unittest.TestCase):
         self.assertEqual(resolution_study.verdict(one, {"mean": 1.0, "min": 0.0, "max": 2.0, "n": 3})["verdict"], "not enough runs")
 
 
+class EarlierResolutions(unittest.TestCase):
+    """A summary keeps the resolutions of an earlier one whose runs are gone:
+    they come back with their curves, keyed by S; one without its curves file
+    cannot be redrawn and is not kept."""
+
+    def test_kept_with_curves_and_dropped_without(self):
+        with tempfile.TemporaryDirectory() as out:
+            with open(os.path.join(out, "resolution_summary.json"), "w") as f:
+                json.dump({"resolutions": {"4": {"scenario": "s4", "scale_factor": 4.0}, "3": {"scenario": "s3", "scale_factor": 3.0}}}, f)
+            with open(os.path.join(out, "curves_S4.json"), "w") as f:
+                json.dump({"1": {"mean_n": [1.0, 2.0]}}, f)
+            kept = resolution_study.earlier_resolutions(out)
+            self.assertEqual(sorted(kept), [4.0])
+            self.assertEqual(kept[4.0]["scenario"], "s4")
+            self.assertEqual(kept[4.0]["curves"]["1"]["mean_n"], [1.0, 2.0])
+            self.assertEqual(resolution_study.earlier_resolutions(os.path.join(out, "none")), {})
+
+
 class Run(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()

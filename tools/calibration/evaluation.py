@@ -19,6 +19,7 @@ import numpy as np
 
 import dfc_results  # noqa: E402  (python/: the results reader)
 
+from .calibration_file import CalibrationError
 from .evaluation_cache import run_key
 from .experiments import measure, measure_tension
 
@@ -71,6 +72,16 @@ def experiments_needed(targets):
 # Which measured value (experiments.measure, measure_tension) each target quantity is.
 MEASURED_AS = {"ucs_pa": "peak_pa", "triaxial_peak_deviator_pa": "peak_pa", "young_modulus_pa": "young_modulus_pa",
                "poisson_ratio": "poisson_ratio", "tensile_strength_pa": "tensile_strength_pa"}
+
+
+# Why a measured value can be missing, and the fix (CalibrationError of Evaluator.evaluate).
+UNMEASURED_HINT = {
+    "young_modulus_pa": "fewer than two recorded points lie below 30 % of the peak (it comes early for the record "
+                        "interval); record more often: in \"sample\": {\"patch\": ...} divide coupling.exchange_interval by 4 "
+                        "and multiply run.exchanges by 4 (the same strain, four times the records)",
+    "poisson_ratio": "fewer than two recorded points lie below 30 % of the peak; record more often (sample.patch "
+                     "coupling.exchange_interval, with run.exchanges raised in proportion)",
+}
 
 
 def target_value(target, measured):
@@ -134,5 +145,10 @@ class Evaluator:
                                            "point (no peak): lengthen the sample's run.exchanges")
         for seed in self.calibration.packings:
             for t in self.calibration.targets:
-                values[t.name].append(target_value(t, measured[seed]))
+                value = target_value(t, measured[seed])
+                if not np.isfinite(value):
+                    # A search on a NaN objective wanders; stop and say how to measure it.
+                    raise CalibrationError(f"targets.{t.name}", f"packing {seed} gave no value at {free_values}",
+                                           UNMEASURED_HINT.get(t.quantity, "look at the run's results in the output folder's runs/"))
+                values[t.name].append(value)
         return evaluation
