@@ -11,8 +11,10 @@ scenarios/calibration/ has examples), then
   2. takes a dimensionless scaling step (moduli by E_target/E, strengths
      by target/achieved peak; calibration/scaling.py), and up to two more
      with the exponents measured between the last two evaluations,
-  3. searches the rest with Nelder-Mead on the logarithms of the free
-     parameters until every target is inside its tolerance,
+  3. searches the rest on the logarithms of the free parameters until every
+     target is inside its tolerance: Nelder-Mead, or with "search": {"method":
+     "gauss_newton"} Gauss-Newton on power laws (measured log-derivatives,
+     Broyden updates, a trust region; calibration/gauss_newton.py),
   4. measures the sensitivity d ln(target)/d ln(parameter) at the optimum,
   5. writes material.json (for "contact": {"include": ...}; a copy where
      output.material says), summary.json/.md
@@ -35,7 +37,7 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), 
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, os.path.join(ROOT, "python"))
 
-from calibration import outputs, scaling, search, sensitivity  # noqa: E402
+from calibration import gauss_newton, outputs, scaling, search, sensitivity  # noqa: E402
 from calibration.calibration_file import CalibrationError, check_against_law, read_calibration  # noqa: E402
 from calibration.evaluation import Evaluator  # noqa: E402
 from calibration.evaluation_cache import EvaluationCache  # noqa: E402
@@ -130,17 +132,24 @@ def take_scaling_steps(run, first, log):
 
 
 def search_the_rest(run):
-    """3. Nelder-Mead from the best point so far, until every target is inside its tolerance."""
+    """3. From the best point so far until every target is inside its tolerance:
+    Nelder-Mead (search.py) or the power-law Gauss-Newton (gauss_newton.py), as search.method says."""
     if run.best[1]["within_tolerance"]:
         return
 
-    def objective(values):
+    def evaluate(values):
         _, record = run.evaluate(values, "search")
         if record["within_tolerance"]:
             raise search.Converged()
-        return record["objective"]
-    search.nelder_mead(run.calibration.free, run.best[1]["parameters"], objective,
-                       run.calibration.max_evaluations - len(run.history))
+        return record["means"], record["objective"]
+    budget = run.calibration.max_evaluations - len(run.history)
+    try:
+        if run.calibration.method == "gauss_newton":
+            gauss_newton.gauss_newton(run.calibration.free, run.calibration.targets, run.best[1]["parameters"], evaluate, budget)
+        else:
+            search.nelder_mead(run.calibration.free, run.best[1]["parameters"], lambda values: evaluate(values)[1], budget)
+    except search.Converged:
+        pass
 
 
 def measure_sensitivity(run):

@@ -119,7 +119,9 @@ def find_study_runs(directory, accept, make):
 def is_foundation_run(r):
     """A finished run that pushed the (closed) pile into a generated body."""
     if not r.has_series("dem_pile_tip_force_n") or r.summary is None:
-        return False
+        return False  # no summary: still running, or killed before it could write one
+    if r.summary.get("stopped_by_signal") or r.failure is not None:
+        return False  # stopped part-way (resume it: ./vc run --resume) or failed
     if r.has_series("dem_pile_inner_shaft_force_n"):  # an open tube: tools/open_pile.py
         return False
     return r.scenario["participants"]["dem"]["config"]["particles"].get("generator") == "pcrm"

@@ -40,8 +40,8 @@ ROOT = os.path.abspath(os.path.join(HERE, os.pardir, os.pardir))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 
 import calibrate  # noqa: E402
-from calibration import scaling, sensitivity  # noqa: E402
-from calibration.calibration_file import CalibrationError, FreeParameter, read_targets  # noqa: E402
+from calibration import gauss_newton, scaling, search, sensitivity  # noqa: E402
+from calibration.calibration_file import CalibrationError, FreeParameter, Target, read_targets  # noqa: E402
 from calibration.evaluation_cache import run_key  # noqa: E402
 from calibration.evaluation import TENSION, UNCONFINED, Evaluator, experiments_needed, target_value  # noqa: E402
 from calibration.experiments import measure, measure_tension  # noqa: E402
@@ -290,6 +290,65 @@ class Experiments(unittest.TestCase):
             evaluator.evaluate({"bond_emod_pa": 1e9})
         self.assertIn("targets.young_modulus_pa: packing 6", str(raised.exception))
         self.assertIn("exchange_interval", str(raised.exception))
+
+
+class GaussNewton(unittest.TestCase):
+    """The power-law search (calibration/gauss_newton.py) on closed-form stand-ins for the DEM:
+    four parameters, five targets, the chalk calibration's shape (strengths coupled
+    through two bond strengths and friction, the modulus through the moduli)."""
+
+    EXPONENTS = [[0.0, 0.2, 0.45, 0.3],    # UCS: tension and cohesion strengths, friction
+                 [0.0, 0.5, 0.3, 0.05],    # tensile strength
+                 [1.0, 0.0, 0.0, 0.0],     # Young's modulus
+                 [0.0, 0.2, 0.45, 0.35],   # peak at 100 kPa
+                 [0.0, 0.2, 0.4, 0.45]]    # peak at 300 kPa
+    TRUE = [1.0e9, 4.0e5, 3.0e5, 0.6]
+
+    def setUp(self):
+        self.free = [FreeParameter("e", 2e9, 1e7, 1e11), FreeParameter("t", 2e5, 1e4, 1e8),
+                     FreeParameter("c", 5e5, 1e4, 1e8), FreeParameter("f", 0.5, 0.1, 2.0)]
+        self.targets = [Target(f"y{i}", "ucs_pa", self.model(self.TRUE, i, bend=0.0), 0.03) for i in range(5)]
+
+    def model(self, values, i, bend):
+        """A power law, bent by bend * (ln p)^2 terms where bend > 0 (not a power law: S changes along the way)."""
+        logs = [math.log(v / t) for v, t in zip(values, [1e9, 1e5, 1e5, 0.5])]
+        return math.exp(sum(a * l + bend * a * l * l for a, l in zip(self.EXPONENTS[i], logs)))
+
+    def search(self, bend):
+        calls = []
+
+        def evaluate(values):
+            calls.append(values)
+            means = {t.name: self.model([values[n] for n in "etcf"], i, bend) for i, t in enumerate(self.targets)}
+            if search.within_tolerance(self.targets, means):
+                raise search.Converged()
+            return means, search.objective(self.targets, means)
+        try:
+            gauss_newton.gauss_newton(self.free, self.targets, {p.name: p.start for p in self.free}, evaluate, 30)
+        except search.Converged:
+            return len(calls), True
+        return len(calls), False
+
+    def test_a_power_law_is_met_after_the_jacobian_and_one_step(self):
+        calls, converged = self.search(bend=0.0)
+        self.assertTrue(converged)
+        self.assertLessEqual(calls, 1 + 4 + 1)   # the start (cached by the caller), S, one exact step
+
+    def test_a_bent_law_is_met_in_a_few_broyden_steps(self):
+        calls, converged = self.search(bend=0.1)
+        self.assertTrue(converged)
+        self.assertLessEqual(calls, 1 + 4 + 8)   # Nelder-Mead needs about 10 per parameter
+
+    def test_the_step_stays_inside_the_radius_and_the_bounds(self):
+        import numpy as np
+        radius, lower, upper = math.log(2.0), np.array([-1.0, -0.05]), np.array([1.0, 1.0])
+        step = gauss_newton.gauss_newton_step(np.eye(2), np.array([5.0, 1.0]), np.ones(2), radius, lower, upper, np.zeros(2))
+        self.assertAlmostEqual(step[0], radius, places=3)            # the whole step scaled to the radius
+        self.assertAlmostEqual(step[1] / step[0], 0.2, places=3)     # in the same direction
+        step = gauss_newton.gauss_newton_step(np.eye(2), np.array([0.5, -0.1]), np.ones(2), radius, lower, upper, np.zeros(2))
+        self.assertAlmostEqual(step[1], -0.05)                       # cut to the bound
+        jacobian = gauss_newton.broyden_update(np.zeros((1, 2)), np.array([0.5, 0.0]), np.array([1.0]))
+        self.assertEqual(jacobian.tolist(), [[2.0, 0.0]])          # reproduces the step it saw
 
 
 class CacheAndSensitivity(unittest.TestCase):

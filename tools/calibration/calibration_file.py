@@ -41,6 +41,8 @@ TARGETS = {
 }
 # The targets only a periodic REV measures: lateral strains, a confinement, a pull.
 PERIODIC_ONLY = ("poisson_ratio", "triaxial_peak_deviator_pa", "tensile_strength_pa", "tensile_to_compressive_ratio")
+# search.method: Nelder-Mead (search.py) or the power-law Gauss-Newton (gauss_newton.py).
+SEARCH_METHODS = ("nelder_mead", "gauss_newton")
 TOP_KEYS = ("name", "law", "sample", "fixed", "free", "tied", "targets", "search", "output", "_comment", "comment")
 
 
@@ -79,6 +81,7 @@ class Calibration:
     targets: list
     max_evaluations: int = 40
     scaling_steps: int = 3
+    method: str = "nelder_mead"
     sensitivity: bool = True
     sensitivity_step: float = 0.1
     output_directory: str = ""
@@ -198,8 +201,11 @@ def read_calibration(path):
     fixed = _object(raw.get("fixed", {}), "fixed", '{"NAME": value}')
     search = _object(raw.get("search", {}), "search", '{"max_evaluations": 40}')
     for key in search:
-        if key not in ("max_evaluations", "scaling_steps", "sensitivity", "sensitivity_step"):
-            raise CalibrationError(f"search.{key}", "unknown key", "use max_evaluations, scaling_steps, sensitivity, sensitivity_step")
+        if key not in ("max_evaluations", "scaling_steps", "method", "sensitivity", "sensitivity_step"):
+            raise CalibrationError(f"search.{key}", "unknown key", "use max_evaluations, scaling_steps, method, sensitivity, sensitivity_step")
+    method = search.get("method", "nelder_mead")
+    if method not in SEARCH_METHODS:
+        raise CalibrationError("search.method", f"unknown method {json.dumps(method)}", f"use one of {', '.join(SEARCH_METHODS)}")
     output = _object(raw.get("output", {}), "output", '{"directory": "results/calibration/NAME"}')
     for key in output:
         if key not in ("directory", "material"):
@@ -209,7 +215,7 @@ def read_calibration(path):
         path=os.path.abspath(path), name=name, law=raw["law"], scenario_path=scenario_path,
         variant=sample.get("variant", ""), packings=packings, sample_patch=sample.get("patch", {}),
         fixed=fixed, free=free, tied=tied, targets=read_targets(raw["targets"]),
-        max_evaluations=int(search.get("max_evaluations", 40)), scaling_steps=int(search.get("scaling_steps", 3)),
+        max_evaluations=int(search.get("max_evaluations", 40)), scaling_steps=int(search.get("scaling_steps", 3)), method=method,
         sensitivity=bool(search.get("sensitivity", True)), sensitivity_step=float(search.get("sensitivity_step", 0.1)),
         output_directory=output.get("directory", os.path.join("results", "calibration", name)),
         material_copy=os.path.normpath(os.path.join(here, output["material"])) if "material" in output else "", raw=raw)

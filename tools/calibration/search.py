@@ -42,15 +42,21 @@ def within_tolerance(targets, means):
                for t in targets)
 
 
+def log_coordinates(free, start):
+    """The free parameters' names, their values at start, and the bounds of u = ln(p / p_start)."""
+    names = [p.name for p in free]
+    p0 = np.array([start[n] for n in names])
+    lower = np.array([math.log(p.lower / start[p.name]) for p in free])
+    upper = np.array([math.log(p.upper / start[p.name]) for p in free])
+    return names, p0, lower, upper
+
+
 def nelder_mead(free, start, evaluate, max_evaluations):
     """Minimise evaluate({name: value}) -> objective from start {name: value}.
     evaluate raises Converged to stop; returns None (the caller keeps the best)."""
     if max_evaluations <= 0:
         return
-    names = [p.name for p in free]
-    p0 = np.array([start[n] for n in names])
-    lower = np.array([math.log(p.lower / start[p.name]) for p in free])
-    upper = np.array([math.log(p.upper / start[p.name]) for p in free])
+    names, p0, lower, upper = log_coordinates(free, start)
 
     def to_values(u):
         u = np.clip(u, lower, upper)
