@@ -42,7 +42,8 @@ I < 1e-3. It is reported along the loading (median and largest over
 h_1 = 0.05-1 D_f, after the collapse of the initial peak).
 
 A measure is converged where the two finest resolutions' means differ by no
-more than the larger of their half-ranges (the scatter over packings): a
+more than the larger of their half-ranges (per g-level: the two finest that
+have finished runs at that g-level) (the scatter over packings): a
 difference inside the scatter does not count (docs/resolution.md).
 
 Exit status: 0 done; 1 a run failed; 2 bad input; 3 nothing to summarise.
@@ -175,6 +176,21 @@ def verdict(fine, coarse):
     return {"verdict": "converged" if difference <= scatter else "not converged", "difference": difference, "scatter": scatter}
 
 
+def verdicts_by_g_level(resolutions, scales):
+    """{g: {"finest", "next", measure: verdict}}: each g-level's two finest resolutions
+    compared (a finer resolution may have only some g-levels finished yet)."""
+    verdicts = {}
+    levels = sorted({g for s in scales for g in resolutions[s]["g_levels"]}, key=float)
+    for g in levels:
+        having = [s for s in scales if g in resolutions[s]["g_levels"]]  # coarse to fine
+        if len(having) < 2:
+            continue
+        fine, coarse = resolutions[having[-1]]["g_levels"][g], resolutions[having[-2]]["g_levels"][g]
+        verdicts[g] = {"finest": f"{having[-1]:g}", "next": f"{having[-2]:g}",
+                       **{key: verdict(fine.get(key, {}), coarse.get(key, {})) for key, _, _ in MEASURES}}
+    return verdicts
+
+
 def earlier_resolutions(out):
     """The resolutions of an earlier summary in OUT, each with its curves, keyed by S;
     {} where there is none (module docstring)."""
@@ -246,16 +262,11 @@ def command_summary(args):
     for s in scales:
         with open(os.path.join(args.out, f"curves_S{s:g}.json"), "w") as f:
             json.dump(resolutions[s].pop("curves"), f)
-    verdicts = {}
-    if len(scales) >= 2:
-        fine, coarse = resolutions[scales[-1]], resolutions[scales[-2]]
-        for g in fine["g_levels"]:
-            if g in coarse["g_levels"]:
-                verdicts[g] = {key: verdict(fine["g_levels"][g].get(key, {}), coarse["g_levels"][g].get(key, {})) for key, _, _ in MEASURES}
+    verdicts = verdicts_by_g_level(resolutions, scales)
     ordering = {f"{s:g}": [g for g, _ in sorted(resolutions[s]["g_levels"].items(),
                                                 key=lambda item: item[1]["mean_force_n_0.25_to_1D"]["mean"])] for s in scales}
     summary = {"resolutions": {f"{s:g}": resolutions[s] for s in scales},
-               "verdicts": {"finest": f"{scales[-1]:g}", "next": f"{scales[-2]:g}" if len(scales) > 1 else None, "by_g_level": verdicts},
+               "verdicts": {"by_g_level": verdicts},
                "g_levels_by_mean_force": ordering, "quasi_static_inertial_number": QUASI_STATIC_I}
     with open(os.path.join(args.out, "resolution_summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
@@ -291,16 +302,16 @@ def markdown_tables(summary, scales):
                          f"| {i.get('median', float('nan')):.1e} / {i.get('max', float('nan')):.1e} |")
     verdicts = summary["verdicts"]
     if verdicts["by_g_level"]:
-        lines += ["", f"Verdicts, S = {verdicts['finest']} against S = {verdicts['next']} (converged: the means differ by no more than "
+        lines += ["", "Verdicts, each g-level's two finest resolutions (converged: the means differ by no more than "
                   "the larger half-range over packings):", "",
-                  "| g | " + " | ".join(text for _, _, text in MEASURES) + " |",
-                  "|---|" + "---|" * len(MEASURES)]
+                  "| g | S compared | " + " | ".join(text for _, _, text in MEASURES) + " |",
+                  "|---|---|" + "---|" * len(MEASURES)]
         for g, by_measure in sorted(verdicts["by_g_level"].items(), key=lambda item: float(item[0])):
             cells = []
             for key, _, _ in MEASURES:
                 v = by_measure[key]
                 cells.append(v["verdict"] if "difference" not in v else f"{v['verdict']} ({v['difference']:.3g} against {v['scatter']:.3g})")
-            lines.append(f"| {float(g):g} | " + " | ".join(cells) + " |")
+            lines.append(f"| {float(g):g} | {by_measure['finest']} against {by_measure['next']} | " + " | ".join(cells) + " |")
     lines += ["", "g-levels by mean force 0.25–1 D_f, lowest first: " +
               "; ".join(f"S = {s}: {', '.join(g + ' g' for g in order)}" for s, order in summary["g_levels_by_mean_force"].items())]
     return "\n".join(lines) + "\n"

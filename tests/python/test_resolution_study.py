@@ -59,6 +59,27 @@ class Verdict(unittest.TestCase):
         self.assertEqual(resolution_study.verdict(one, {"mean": 1.0, "min": 0.0, "max": 2.0, "n": 3})["verdict"], "not enough runs")
 
 
+class VerdictsByGLevel(unittest.TestCase):
+    """Each g-level is judged on its own two finest resolutions: a finer one with
+    only some g-levels finished decides those, the rest keep the coarser pair."""
+
+    def test_each_g_level_compares_its_own_two_finest(self):
+        def level(mean):
+            return {key: {"mean": mean, "min": mean - 1.0, "max": mean + 1.0, "n": 3} for key, _, _ in resolution_study.MEASURES}
+        resolutions = {4.0: {"g_levels": {"1": level(10.0), "10": level(13.0)}},
+                       3.0: {"g_levels": {"1": level(17.0), "10": level(13.5)}},
+                       2.0: {"g_levels": {"1": level(17.5)}}}
+        verdicts = resolution_study.verdicts_by_g_level(resolutions, [4.0, 3.0, 2.0])
+        self.assertEqual((verdicts["1"]["finest"], verdicts["1"]["next"]), ("2", "3"))
+        self.assertEqual((verdicts["10"]["finest"], verdicts["10"]["next"]), ("3", "4"))
+        self.assertEqual(verdicts["1"]["mean_force_n_0.25_to_1D"]["verdict"], "converged")       # 0.5 apart, half-range 1
+        self.assertEqual(verdicts["10"]["mean_force_n_0.25_to_1D"]["verdict"], "converged")
+        resolutions[2.0]["g_levels"]["1"] = level(25.0)
+        verdicts = resolution_study.verdicts_by_g_level(resolutions, [4.0, 3.0, 2.0])
+        self.assertEqual(verdicts["1"]["mean_force_n_0.25_to_1D"]["verdict"], "not converged")   # 8 apart
+        self.assertEqual(resolution_study.verdicts_by_g_level({3.0: resolutions[3.0]}, [3.0]), {})
+
+
 class EarlierResolutions(unittest.TestCase):
     """A summary keeps the resolutions of an earlier one whose runs are gone:
     they come back with their curves, keyed by S; one without its curves file
