@@ -65,6 +65,7 @@ class Calibrator:
         self.history = []
         self.best = None
         self.seen = {}   # parameters -> (evaluation, record): Nelder-Mead asks for its start again
+        self.stopped_at_noise = False
 
     def evaluate(self, values, phase):
         known = self.seen.get(tuple(sorted(values.items())))
@@ -75,8 +76,10 @@ class Calibrator:
         means = {t.name: e.mean(t.name) for t in targets}
         record = {"evaluation": len(self.history) + 1, "phase": phase, "parameters": values, "means": means,
                   "scatter": {t.name: e.scatter(t.name) for t in targets},
+                  "standard_error": search.standard_errors(targets, e.values),
                   "objective": search.objective(targets, means), "within_tolerance": search.within_tolerance(targets, means),
                   "new_dem_runs": e.new_runs, "runs": e.runs}
+        record["within_noise"] = search.within_noise(targets, means, record["standard_error"])
         self.history.append(record)
         if phase != "sensitivity" and (self.best is None or record["objective"] < self.best[1]["objective"]):
             self.best = (e, record)
@@ -136,11 +139,19 @@ def search_the_rest(run):
     Nelder-Mead (search.py) or the power-law Gauss-Newton (gauss_newton.py), as search.method says."""
     if run.best[1]["within_tolerance"]:
         return
+    if run.calibration.stop_at_noise and run.best[1]["within_noise"]:
+        run.stopped_at_noise = True
+        return
 
     def evaluate(values):
         _, record = run.evaluate(values, "search")
         if record["within_tolerance"]:
             raise search.Converged()
+        if run.calibration.stop_at_noise and record["within_noise"] and record is run.best[1]:
+            run.log(f"evaluation {record['evaluation']}: every target inside the larger of its tolerance and its mean's "
+                    "standard error over the packings: stopping at the noise floor")
+            run.stopped_at_noise = True
+            raise search.AtNoiseFloor()
         return record["means"], record["objective"]
     budget = run.calibration.max_evaluations - len(run.history)
     try:
@@ -178,7 +189,8 @@ def write_outputs(run, cache, start, table, session_wall_s):
     summary = {
         "name": calibration.name, "law": calibration.law, "calibration_file": calibration.path,
         "sample": {"scenario": calibration.scenario_path, "variant": calibration.variant, "packings": calibration.packings},
-        "converged": best["within_tolerance"], "start": start, "parameters": best["parameters"],
+        "converged": best["within_tolerance"], "stopped_at_noise_floor": run.stopped_at_noise,
+        "start": start, "parameters": best["parameters"],
         "achieved": outputs.achieved_table(calibration.targets, best_evaluation),
         "evaluations": len(run.history),
         "dem_runs": len(used), "dem_runs_this_session": cache.misses,
@@ -235,10 +247,10 @@ def main(argv=None):
     except CalibrationError as e:  # a run that cannot measure a target: the cache keeps what ran
         print(f"calibrate: error in {args.calibration}: {e}", file=sys.stderr)
         return 2
-    print(f"{'converged' if summary['converged'] else 'NOT converged'} after {summary['evaluations']} evaluations, "
+    print(f"{outputs.convergence_phrase(summary)} after {summary['evaluations']} evaluations, "
           f"{summary['dem_runs']} DEM runs ({summary['dem_runs_this_session']} new), {summary['session_wall_s']:.0f} s; "
           f"{os.path.join(out, 'summary.md')}, material {summary['material']}")
-    return 0 if summary["converged"] else 1
+    return 0 if summary["converged"] or summary["stopped_at_noise_floor"] else 1
 
 
 if __name__ == "__main__":

@@ -351,6 +351,34 @@ class GaussNewton(unittest.TestCase):
         self.assertEqual(jacobian.tolist(), [[2.0, 0.0]])          # reproduces the step it saw
 
 
+class NoiseFloor(unittest.TestCase):
+    """"stop_at_noise": a point whose every error is inside the larger of the tolerance and
+    the standard error of its mean over the packings cannot be improved on visibly."""
+
+    def test_standard_error_and_the_floor(self):
+        target = [Target("ucs_pa", "ucs_pa", 1.0, 0.05)]
+        noisy = search.standard_errors(target, {"ucs_pa": [0.9, 1.1, 1.3]})
+        self.assertAlmostEqual(noisy["ucs_pa"], 0.2 / math.sqrt(3.0))         # sample std 0.2 over sqrt(3)
+        self.assertTrue(search.within_noise(target, {"ucs_pa": 1.1}, noisy))   # 10 % off, 11.5 % of noise
+        quiet = search.standard_errors(target, {"ucs_pa": [1.05, 1.1, 1.15]})
+        self.assertFalse(search.within_noise(target, {"ucs_pa": 1.1}, quiet))  # 10 % off, 2.9 % of noise, 5 % tolerance
+        self.assertTrue(math.isnan(search.standard_errors(target, {"ucs_pa": [1.0]})["ucs_pa"]))
+        self.assertFalse(search.within_noise(target, {"ucs_pa": 1.0}, {"ucs_pa": float("nan")}))  # one packing: no floor
+
+    def test_the_key_is_read_and_checked(self):
+        spec = {"law": "damage_bond", "targets": {"ucs_pa": {"value": 1e6}},
+                "sample": {"scenario": os.path.join(ROOT, "scenarios", "triaxial_damagebond_samecell.json"), "variant": "S4",
+                           "packings": [5, 6, 7]},
+                "free": {"ten_pa": {"start": 1e6, "min": 1e5, "max": 1e7}},
+                "search": {"method": "gauss_newton", "stop_at_noise": True}}
+        calibration, _, _ = prepared(spec)
+        self.assertEqual((calibration.method, calibration.stop_at_noise), ("gauss_newton", True))
+        spec["search"] = {"method": "simplex"}
+        with self.assertRaises(CalibrationError) as raised:
+            prepared(spec)
+        self.assertIn("search.method", str(raised.exception))
+
+
 class CacheAndSensitivity(unittest.TestCase):
     def test_the_key_changes_with_one_bit_of_one_parameter(self):
         scenario = {"participants": {"dem": {"config": {"contact": {"sb_coh_pa": 4.5e5}, "particles": {"seed": 3}}}}}

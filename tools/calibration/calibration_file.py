@@ -82,6 +82,7 @@ class Calibration:
     max_evaluations: int = 40
     scaling_steps: int = 3
     method: str = "nelder_mead"
+    stop_at_noise: bool = False
     sensitivity: bool = True
     sensitivity_step: float = 0.1
     output_directory: str = ""
@@ -201,8 +202,9 @@ def read_calibration(path):
     fixed = _object(raw.get("fixed", {}), "fixed", '{"NAME": value}')
     search = _object(raw.get("search", {}), "search", '{"max_evaluations": 40}')
     for key in search:
-        if key not in ("max_evaluations", "scaling_steps", "method", "sensitivity", "sensitivity_step"):
-            raise CalibrationError(f"search.{key}", "unknown key", "use max_evaluations, scaling_steps, method, sensitivity, sensitivity_step")
+        if key not in ("max_evaluations", "scaling_steps", "method", "stop_at_noise", "sensitivity", "sensitivity_step"):
+            raise CalibrationError(f"search.{key}", "unknown key",
+                                   "use max_evaluations, scaling_steps, method, stop_at_noise, sensitivity, sensitivity_step")
     method = search.get("method", "nelder_mead")
     if method not in SEARCH_METHODS:
         raise CalibrationError("search.method", f"unknown method {json.dumps(method)}", f"use one of {', '.join(SEARCH_METHODS)}")
@@ -216,6 +218,7 @@ def read_calibration(path):
         variant=sample.get("variant", ""), packings=packings, sample_patch=sample.get("patch", {}),
         fixed=fixed, free=free, tied=tied, targets=read_targets(raw["targets"]),
         max_evaluations=int(search.get("max_evaluations", 40)), scaling_steps=int(search.get("scaling_steps", 3)), method=method,
+        stop_at_noise=bool(search.get("stop_at_noise", False)),
         sensitivity=bool(search.get("sensitivity", True)), sensitivity_step=float(search.get("sensitivity_step", 0.1)),
         output_directory=output.get("directory", os.path.join("results", "calibration", name)),
         material_copy=os.path.normpath(os.path.join(here, output["material"])) if "material" in output else "", raw=raw)

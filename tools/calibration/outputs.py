@@ -40,9 +40,19 @@ def achieved_table(targets, evaluation):
     return rows
 
 
+def convergence_phrase(summary):
+    """Converged (every target inside its tolerance), stopped at the noise floor (inside the
+    larger of tolerance and standard error: search.within_noise), or not converged."""
+    if summary["converged"]:
+        return "Converged"
+    if summary.get("stopped_at_noise_floor"):
+        return "Stopped at the noise floor (every target within its tolerance or its mean's standard error over the packings)"
+    return "NOT converged"
+
+
 def write_summary_md(path, summary):
     lines = [f"# Calibration {summary['name']} ({summary['law']})", "",
-             f"{'Converged' if summary['converged'] else 'NOT converged'}: {summary['evaluations']} evaluations, "
+             f"{convergence_phrase(summary)}: {summary['evaluations']} evaluations, "
              f"{summary['dem_runs']} DEM runs ({summary['dem_runs_this_session']} run in this session, the rest from the cache), "
              f"DEM wall time {summary['dem_wall_s']:.0f} s over all runs, this session {summary['session_wall_s']:.0f} s.", "",
              "| parameter | start | calibrated |", "|---|---:|---:|"]

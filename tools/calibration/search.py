@@ -27,6 +27,11 @@ class Converged(Exception):
     """Every target is inside its tolerance: stop the search here."""
 
 
+class AtNoiseFloor(Converged):
+    """Every target is inside the larger of its tolerance and its mean's standard error
+    ("search": {"stop_at_noise": true}): stop, the packings cannot resolve more."""
+
+
 def objective(targets, means):
     total = 0.0
     for t in targets:
@@ -35,6 +40,23 @@ def objective(targets, means):
             return PENALTY
         total += (t.relative_error(m) / t.tolerance) ** 2
     return total
+
+
+def standard_errors(targets, values):
+    """{target name: standard error of the mean over the packings, relative to the target}
+    (sample standard deviation / sqrt(n)); NaN with fewer than two packings."""
+    out = {}
+    for t in targets:
+        v = np.asarray(values.get(t.name, []), dtype=float)
+        out[t.name] = float(np.std(v, ddof=1) / math.sqrt(len(v)) / abs(t.value)) if len(v) >= 2 else float("nan")
+    return out
+
+
+def within_noise(targets, means, errors):
+    """Every target's error inside the larger of its tolerance and its mean's standard
+    error (standard_errors): a step from here cannot be told from the packings' noise."""
+    return all(math.isfinite(means.get(t.name, float("nan"))) and math.isfinite(errors.get(t.name, float("nan")))
+               and abs(t.relative_error(means[t.name])) <= max(t.tolerance, errors[t.name]) for t in targets)
 
 
 def within_tolerance(targets, means):
