@@ -360,7 +360,7 @@ const SectionDeclaration& pile() {
   static const SectionDeclaration s{
       .name = "dem.pile",
       .doc = "a rigid pile: a closed cylinder with a flat tip, or an open-ended tube with wall_thickness_m (monitors pile_force_n, pile_tip_force_n, "
-             "pile_shaft_force_n, pile_displacement_m; a tube also pile_inner_shaft_force_n, pile_outer_shaft_force_n, pile_plug_length_m, "
+             "pile_shaft_force_n, pile_displacement_m, pile_inertial_number; a tube also pile_inner_shaft_force_n, pile_outer_shaft_force_n, pile_plug_length_m, "
              "pile_plug_particles)",
       .parameters = {axis_xy(), P::number("radius_m", "m", "outer radius").positive(), P::number("tip_z_m", "m", "height of the tip"),
                      P::number("length_m", "m", "length above the tip").positive(),

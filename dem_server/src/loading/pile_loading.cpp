@@ -4,9 +4,12 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numbers>
+#include <optional>
 
 #include "dfc/common/unit_names.hpp"
 #include "dfc/dem/foundation_loading.hpp"
+#include "dfc/dem/inertial_number.hpp"
 #include "dfc/dem/loading_protocol.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/model_builder.hpp"
@@ -83,6 +86,7 @@ class PileLoading final : public LoadingProtocol {
     out["pile_peak_force_n"] = std::isfinite(peak_force_) ? peak_force_ : 0.0;
     for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
       if (!out.contains(force)) out[force] = 0.0;
+    out["pile_inertial_number"] = loading_inertial_number(s, out["pile_tip_force_n"].get<double>());
     if (inner_.empty()) return;
     for (const char* force : {"pile_inner_shaft_force_n", "pile_outer_shaft_force_n"})
       if (!out.contains(force)) out[force] = 0.0;
@@ -110,6 +114,20 @@ class PileLoading final : public LoadingProtocol {
   }
 
  private:
+  /// The inertial number of the push (inertial_number.hpp): the shear rate v/D with
+  /// v the pile's current speed (the ramp included) and D its outer diameter, the tip
+  /// pressure over the flat end (an open tube's annulus). 0 while the pile rests. The
+  /// grain scale is taken once the pile moves (the body is then complete; a resumed
+  /// run takes it again from the same particles).
+  [[nodiscard]] double loading_inertial_number(const Simulation& s, double tip_force) const {
+    const double speed = norm(s.walls()[wall_].prescribed_velocity);
+    if (waiting_ || s.step_count() < start_step_ || !(speed > 0.0)) return 0.0;
+    if (!grains_) grains_ = grain_scale(s.particles());
+    const double r = config_.geometry.radius, ri = config_.geometry.inner_radius;
+    const double tip_area = std::numbers::pi * (r * r - ri * ri);
+    return inertial_number(speed / (2.0 * r), grains_->mean_diameter, tip_force / tip_area, grains_->density);
+  }
+
   /// Unit vector of the pile's motion (its velocity direction; -z if it does not move).
   [[nodiscard]] Vec3 direction() const {
     const double speed = norm(config_.velocity);
@@ -127,6 +145,7 @@ class PileLoading final : public LoadingProtocol {
   bool ramping_ = false;            ///< this advance sets the ramped velocity
   double peak_force_ = std::numeric_limits<double>::quiet_NaN();  ///< N, largest advance-averaged pile force so far
   Vec3 tip_sum_, inner_sum_, outer_sum_;
+  mutable std::optional<GrainScale> grains_;  ///< the body's grain scale, from the pile's first moving monitor
 };
 
 }  // namespace
@@ -142,6 +161,7 @@ void declare_pile_monitors(nlohmann::json& units) {
   units["pile_plug_particles"] = unit::dimensionless;
   units["pile_displacement_m"] = unit::metre;
   units["pile_peak_force_n"] = unit::newton;
+  units["pile_inertial_number"] = unit::dimensionless;
 }
 
 }  // namespace dfc::dem

@@ -20,6 +20,7 @@
 //   pile_inner_shaft_force_n, pile_outer_shaft_force_n  an open tube's (pile.wall_thickness_m) shaft
 //                              parts, each from its facets (the tip is then the annulus)
 //   pile_plug_length_m, pile_plug_particles  an open tube's soil column above its tip (pile_plug.hpp)
+//   pile_inertial_number       I = (v/D) d / sqrt(p_tip/rho_s) of the push, 0 at rest (inertial_number.hpp)
 //   wall_<name>_force_n/_moment_nm  particles on each rigid wall (moment about the origin), averaged
 //   axial_stress_pa, axial_strain   with a "ucs" section only (ucs_platens.hpp): platen stress,
 //                              compression positive, averaged over the advance; strain at its end
