@@ -176,13 +176,20 @@ def verdict(fine, coarse):
     return {"verdict": "converged" if difference <= scatter else "not converged", "difference": difference, "scatter": scatter}
 
 
+def packings_at(level):
+    """The number of packings behind a g-level's measures."""
+    return min((m.get("n", 0) for m in level.values() if isinstance(m, dict) and "n" in m), default=0)
+
+
 def verdicts_by_g_level(resolutions, scales):
-    """{g: {"finest", "next", measure: verdict}}: each g-level's two finest resolutions
-    compared (a finer resolution may have only some g-levels finished yet)."""
+    """{g: {"finest", "next", measure: verdict}}: each g-level's two finest resolutions with
+    at least two packings there compared (a finer resolution may have only some g-levels
+    finished yet, or one packing of them)."""
     verdicts = {}
     levels = sorted({g for s in scales for g in resolutions[s]["g_levels"]}, key=float)
     for g in levels:
-        having = [s for s in scales if g in resolutions[s]["g_levels"]]  # coarse to fine
+        # coarse to fine; a scatter needs two packings, so a resolution with one run there waits
+        having = [s for s in scales if g in resolutions[s]["g_levels"] and packings_at(resolutions[s]["g_levels"][g]) >= 2]
         if len(having) < 2:
             continue
         fine, coarse = resolutions[having[-1]]["g_levels"][g], resolutions[having[-2]]["g_levels"][g]

@@ -78,6 +78,12 @@ class VerdictsByGLevel(unittest.TestCase):
         verdicts = resolution_study.verdicts_by_g_level(resolutions, [4.0, 3.0, 2.0])
         self.assertEqual(verdicts["1"]["mean_force_n_0.25_to_1D"]["verdict"], "not converged")   # 8 apart
         self.assertEqual(resolution_study.verdicts_by_g_level({3.0: resolutions[3.0]}, [3.0]), {})
+        one = level(40.0)
+        for measure in one.values():
+            measure["n"] = 1
+        resolutions[2.0]["g_levels"]["10"] = one  # one packing: no scatter, so 3 against 4 still judges 10 g
+        verdicts = resolution_study.verdicts_by_g_level(resolutions, [4.0, 3.0, 2.0])
+        self.assertEqual((verdicts["10"]["finest"], verdicts["10"]["next"]), ("3", "4"))
 
 
 class EarlierResolutions(unittest.TestCase):
