@@ -14,7 +14,9 @@ scenarios/calibration/ has examples), then
   3. searches the rest on the logarithms of the free parameters until every
      target is inside its tolerance: Nelder-Mead, or with "search": {"method":
      "gauss_newton"} Gauss-Newton on power laws (measured log-derivatives,
-     Broyden updates, a trust region; calibration/gauss_newton.py),
+     Broyden updates, a trust region; calibration/gauss_newton.py); with
+     "stop_at_noise": true it also stops where every target is within the
+     larger of its tolerance and its mean's standard error over the packings,
   4. measures the sensitivity d ln(target)/d ln(parameter) at the optimum,
   5. writes material.json (for "contact": {"include": ...}; a copy where
      output.material says), summary.json/.md

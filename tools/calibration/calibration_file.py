@@ -8,7 +8,8 @@
      "targets": {"ucs_pa": {"value": 5e5, "tolerance": 0.03},
                  "young_modulus_pa": {...}, "poisson_ratio": {...},
                  "triaxial_peak_deviator_pa": [{"confinement_pa": 1e5, "value": 2e6, "tolerance": 0.05}]},
-     "search":  {"max_evaluations": 40, "scaling_steps": 3, "sensitivity": true, "sensitivity_step": 0.1},
+     "search":  {"max_evaluations": 40, "scaling_steps": 3, "method": "nelder_mead", "stop_at_noise": false,
+                 "sensitivity": true, "sensitivity_step": 0.1},
      "output":  {"directory": "results/calibration/mine", "material": "../materials/mine.json"}}
 
 Paths are relative to the calibration file, except output.directory (relative to the
