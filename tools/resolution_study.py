@@ -31,8 +31,12 @@ summary.json of tools/centrifuge_foundation.py in that folder, then, in --out,
   resolution_table.md       the tables of docs/resolution.md
 A resolution already in --out (resolution_summary.json and its curves_S<S>.json)
 whose runs are not under DIR is kept as it is, so a study whose machine was
-lost keeps the resolutions it finished: only the resolutions with runs under
-DIR are recomputed (--replace drops the others).
+lost keeps the resolutions it finished; where DIR has runs of that resolution
+too, the earlier packings are merged with them g-level by g-level (means
+weighted by the packing counts, ranges and bands widened; a packing run again
+replaces the earlier aggregate that held it). So a resolution can be finished
+over several machines, one committed summary at a time. --replace drops
+everything whose runs are not under DIR.
 
 The inertial number of a run (GDR MiDi 2004; da Cruz et al. 2005) is
 I = gamma_dot d / sqrt(p / rho_s) with the shear rate gamma_dot = v / D_f of
@@ -216,6 +220,88 @@ def earlier_resolutions(out):
     return kept
 
 
+def merge_spread(a, b):
+    """Two spreads of tools/centrifuge_foundation.py (mean, min, max, n) over disjoint
+    packings as one: the mean weighted by the counts, the extremes of both."""
+    def count(x):
+        return x.get("n", 0) if math.isfinite(x.get("mean", float("nan"))) else 0
+    na, nb = count(a), count(b)
+    if na == 0 or nb == 0:
+        return dict(b if na == 0 else a)
+    mean = (na * a["mean"] + nb * b["mean"]) / (na + nb)
+    low, high = min(a["min"], b["min"]), max(a["max"], b["max"])
+    return {"mean": mean, "min": low, "max": high, "spread": (high - low) / mean if mean else float("nan"), "n": na + nb}
+
+
+def merge_curve(a, b):
+    """Two force bands of the same grid over disjoint packings as one (pointwise
+    weighted mean, extremes of both; a point one band lacks is the other's)."""
+    import numpy as np
+    na, nb = a["packings"], b["packings"]
+    merged = {"h_over_d": a["h_over_d"], "packings": na + nb}
+    for key, combine in (("mean_n", None), ("min_n", np.fmin), ("max_n", np.fmax)):
+        x, y = np.asarray(a[key], dtype=float), np.asarray(b[key], dtype=float)
+        if combine is None:
+            both = (na * x + nb * y) / (na + nb)
+            value = np.where(np.isnan(x), y, np.where(np.isnan(y), x, both))
+        else:
+            value = combine(x, y)  # fmin/fmax ignore a NaN on one side
+        merged[key] = [float(v) for v in value]
+    return merged
+
+
+def merge_level(earlier, fresh):
+    """A g-level's measures over the earlier packings and the fresh ones (disjoint):
+    each spread merged; the inertial number's median is the larger of the two parts'
+    medians (the runs behind the earlier median are gone; the larger one is the
+    conservative side of the quasi-static criterion) and its maximum the larger one."""
+    merged = {}
+    for key in set(earlier) | set(fresh):
+        a, b = earlier.get(key), fresh.get(key)
+        if key == "packings":
+            merged[key] = sorted(set(a or []) | set(b or []))
+        elif key == "inertial_number":
+            parts = [x for x in (a, b) if x]
+            merged[key] = {k: max(x[k] for x in parts) for k in ("median", "max")} if parts else {}
+        elif isinstance(a, dict) and isinstance(b, dict) and "mean" in a and "mean" in b:
+            merged[key] = merge_spread(a, b)
+        else:
+            merged[key] = b if b is not None else a
+    return merged
+
+
+def merge_resolution(earlier, fresh, scale):
+    """One resolution from an earlier summary's entry (whose runs are gone) and the
+    runs present now: a g-level only one side has is taken as it is; one both have
+    is merged where their packings are disjoint; where the fresh runs repeat packings
+    of the earlier ones, the fresh runs replace them (an earlier aggregate cannot be
+    split: its other packings are dropped, and said)."""
+    merged = dict(fresh, g_levels=dict(fresh["g_levels"]), curves=dict(fresh["curves"]))
+    added = 0
+    for g, level in earlier["g_levels"].items():
+        if g not in fresh["g_levels"]:
+            merged["g_levels"][g], merged["curves"][g] = level, earlier["curves"][g]
+            added += len(level.get("packings", []))
+            print(f"S = {scale:g}, {g} g: packings {level.get('packings')} kept from the earlier summary (their runs are gone)")
+            continue
+        old, new = set(level.get("packings", [])), set(fresh["g_levels"][g].get("packings", []))
+        if old & new:
+            if old - new:
+                print(f"S = {scale:g}, {g} g: the runs present repeat packings {sorted(old & new)} of the earlier summary, "
+                      f"whose packings {sorted(old - new)} cannot be separated from them: dropped")
+            continue
+        merged["g_levels"][g] = merge_level(level, fresh["g_levels"][g])
+        merged["curves"][g] = merge_curve(earlier["curves"][g], fresh["curves"][g])
+        added += len(old)
+        print(f"S = {scale:g}, {g} g: packings {sorted(old)} of the earlier summary merged with the runs present {sorted(new)}")
+    if added:
+        for key in ("particles", "dem_steps", "wall_time_s"):
+            merged[key] = merge_spread(earlier[key], fresh[key])
+        runs = fresh["particles"].get("n", 0)
+        merged["mean_diameter_m"] = (runs * fresh["mean_diameter_m"] + added * earlier["mean_diameter_m"]) / (runs + added)
+    return merged
+
+
 def command_summary(args):
     import numpy as np
     import matplotlib
@@ -261,6 +347,8 @@ def command_summary(args):
             if scale not in resolutions:
                 print(f"S = {scale:g}: kept from {args.out}/resolution_summary.json (its runs are not under {args.runs})")
                 resolutions[scale] = entry
+            else:
+                resolutions[scale] = merge_resolution(entry, resolutions[scale], scale)
     if not resolutions:
         print(f"resolution_study.py: no finished foundation run under {args.runs}", file=sys.stderr)
         return 3
@@ -390,7 +478,7 @@ def main(argv=None):
     summary.add_argument("runs")
     summary.add_argument("--out", default=os.path.join(ROOT, "docs", "figures", "resolution"))
     summary.add_argument("--replace", action="store_true",
-                         help="drop the resolutions of an earlier summary in --out whose runs are not under RUNS")
+                         help="drop what an earlier summary in --out holds of runs that are not under RUNS (by default it is kept or merged)")
     args = parser.parse_args(argv)
     return command_run(args) if args.command == "run" else command_summary(args)
 

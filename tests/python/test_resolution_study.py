@@ -3,6 +3,8 @@
 
 - the verdict: converged only where the two finest resolutions' means differ
   by no more than the larger half-range over packings;
+- a resolution finished over two machines: the earlier summary's packings
+  merged with the runs present as if all were present;
 - `run` on a stand-in coupler (a script that records its arguments): a new
   variant is started with its expanded scenario, one with a checkpoint is
   resumed, one with DONE is skipped, a failed run gets no DONE and makes the
@@ -102,6 +104,55 @@ class EarlierResolutions(unittest.TestCase):
             self.assertEqual(kept[4.0]["scenario"], "s4")
             self.assertEqual(kept[4.0]["curves"]["1"]["mean_n"], [1.0, 2.0])
             self.assertEqual(resolution_study.earlier_resolutions(os.path.join(out, "none")), {})
+
+
+class MergedResolutions(unittest.TestCase):
+    """A resolution finished over two machines: the earlier summary's packings
+    (runs gone) and the runs present are merged g-level by g-level, exactly as if
+    all runs were present (mean weighted by the counts, extremes of both); a packing
+    run again replaces the earlier aggregate holding it."""
+
+    @staticmethod
+    def entry(values_by_g, curve_by_g):
+        def spread(values):
+            return {"mean": sum(values) / len(values), "min": min(values), "max": max(values), "n": len(values)}
+        every = [v for values in values_by_g.values() for v in values.values()]
+        return {"scale_factor": 2.0, "mean_diameter_m": 0.002, "particles": spread([3800.0] * len(every)),
+                "dem_steps": spread([1.8e6] * len(every)), "wall_time_s": spread([float(v) for v in every]),
+                "g_levels": {g: {"packings": sorted(values), "mean_force_n_0.25_to_1D": spread(list(values.values())),
+                                 "inertial_number": {"median": 1e-4 * len(values), "max": 1e-3}}
+                             for g, values in values_by_g.items()},
+                "curves": {g: {"h_over_d": [0.0, 1.0], "packings": len(values), "mean_n": [sum(c) / len(c) for c in zip(*curve_by_g[g])],
+                               "min_n": [min(c) for c in zip(*curve_by_g[g])], "max_n": [max(c) for c in zip(*curve_by_g[g])]}
+                           for g, values in values_by_g.items()}}
+
+    def test_disjoint_packings_merge_as_if_all_runs_were_present(self):
+        earlier = self.entry({"1": {1: 30.0, 2: 36.0}, "100": {1: 64.0}}, {"1": [[0.0, 30.0], [2.0, 36.0]], "100": [[1.0, 64.0]]})
+        fresh = self.entry({"100": {2: 50.0}, "10": {1: 40.0}}, {"100": [[3.0, 50.0]], "10": [[0.0, 40.0]]})
+        merged = resolution_study.merge_resolution(earlier, fresh, 2.0)
+        self.assertEqual(sorted(merged["g_levels"]), ["1", "10", "100"])
+        self.assertEqual(merged["g_levels"]["1"], earlier["g_levels"]["1"])        # only the earlier summary has it
+        level = merged["g_levels"]["100"]
+        self.assertEqual(level["packings"], [1, 2])
+        force = level["mean_force_n_0.25_to_1D"]
+        self.assertEqual((force["mean"], force["min"], force["max"], force["n"]), (57.0, 50.0, 64.0, 2))
+        self.assertEqual(level["inertial_number"]["median"], 1e-4)                 # the larger of the parts' medians
+        curve = merged["curves"]["100"]
+        self.assertEqual((curve["packings"], curve["mean_n"], curve["min_n"], curve["max_n"]), (2, [2.0, 57.0], [1.0, 50.0], [3.0, 64.0]))
+        self.assertEqual(merged["particles"]["n"], 5)                                # 2 + 1 earlier runs kept, 2 fresh
+
+    def test_a_packing_run_again_replaces_the_earlier_aggregate(self):
+        earlier = self.entry({"1": {1: 30.0, 2: 36.0}}, {"1": [[0.0, 30.0], [2.0, 36.0]]})
+        fresh = self.entry({"1": {2: 33.0, 3: 31.0}}, {"1": [[0.0, 33.0], [0.0, 31.0]]})
+        merged = resolution_study.merge_resolution(earlier, fresh, 2.0)
+        self.assertEqual(merged["g_levels"]["1"], fresh["g_levels"]["1"])
+        self.assertEqual(merged["particles"]["n"], 2)
+
+    def test_a_missing_point_of_one_band_is_the_others(self):
+        a = {"h_over_d": [0.0, 1.0], "packings": 1, "mean_n": [1.0, float("nan")], "min_n": [1.0, float("nan")], "max_n": [1.0, float("nan")]}
+        b = {"h_over_d": [0.0, 1.0], "packings": 2, "mean_n": [4.0, 5.0], "min_n": [3.0, 4.0], "max_n": [5.0, 6.0]}
+        merged = resolution_study.merge_curve(a, b)
+        self.assertEqual((merged["mean_n"], merged["min_n"], merged["max_n"]), ([3.0, 5.0], [1.0, 4.0], [5.0, 6.0]))
 
 
 class Run(unittest.TestCase):
