@@ -54,7 +54,10 @@ std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, 
 
 Message Connection::request_raw(Message request, std::chrono::milliseconds deadline) {
   request.seq = next_seq_++;
-  send_message(socket_, request);
+  if (!send_message(socket_, request))
+    throw TimeoutError(label_ + " took no '" + request.type + "' (seq " + std::to_string(request.seq) + "): there is no connection to it at " +
+                       endpoint_ + " that a message can go out on. The security handshake fails where the server does not hold the key " +
+                       "the run names (SPEC.md §2.1), or the server stopped reading");
   auto reply = await_reply(request.seq, deadline);
   if (!reply) {
     std::string why = label_ + " did not answer '" + request.type + "' (seq " + std::to_string(request.seq) + ") within " + seconds_text(deadline);
@@ -79,7 +82,8 @@ Message Connection::request(Message request, std::chrono::milliseconds deadline)
 
 std::optional<Message> Connection::send_frames_raw(const std::vector<std::string>& frames, std::chrono::milliseconds deadline) {
   for (std::size_t i = 0; i < frames.size(); ++i)
-    socket_.send(zmq::buffer(frames[i]), i + 1 < frames.size() ? zmq::send_flags::sndmore : zmq::send_flags::none);
+    if (!socket_.send(zmq::buffer(frames[i]), i + 1 < frames.size() ? zmq::send_flags::sndmore : zmq::send_flags::none))
+      return std::nullopt;  // not taken (send_message): as unanswered
   return await_reply(std::nullopt, deadline);
 }
 

@@ -29,10 +29,10 @@ HeartbeatMonitor::HeartbeatMonitor(zmq::context_t& context, const std::string& e
       endpoint_(endpoint),
       timeouts_{std::max(timeouts.silence, std::chrono::milliseconds(1)), std::max(timeouts.stall, std::chrono::milliseconds(1))},
       interval_(std::clamp(timeouts_.silence / 4, std::chrono::milliseconds(1), kLongestInterval)) {
+  // A ping never blocks the wait (configure_socket's send timeout 0): to a
+  // server that reads none, pings pile up to the high-water mark and the next
+  // ones are dropped, not waited on.
   configure_socket(socket_, heartbeat::message_limits());
-  // A ping never blocks the wait: to a server that reads none, pings pile up
-  // to the high-water mark and the next ones are dropped, not waited on.
-  socket_.set(zmq::sockopt::sndtimeo, 0);
   authentication::secure_client_socket(socket_, server_key);
   socket_.connect(endpoint);
 }

@@ -11,6 +11,11 @@ namespace dfc::protocol {
 
 void configure_socket(zmq::socket_t& socket, const Limits& limits) {
   socket.set(zmq::sockopt::linger, 0);
+  // A send never blocks. A DEALER whose peer failed the security handshake
+  // (a client without the server's key, or with another) has no pipe left,
+  // and libzmq would block in zmq_send for ever; a DEALER whose peer stopped
+  // reading blocks at the high-water mark. send_message reports it instead.
+  socket.set(zmq::sockopt::sndtimeo, 0);
   const std::size_t largest = std::max(limits.max_header_bytes, limits.max_array_bytes);
   socket.set(zmq::sockopt::maxmsgsize, static_cast<int64_t>(2 * largest + 4096));
 }
@@ -34,18 +39,21 @@ std::optional<std::string> endpoint_problem(std::string_view endpoint) {
   return std::nullopt;
 }
 
-void send_message(zmq::socket_t& socket, const Message& message, const zmq::message_t* routing_id) {
+bool send_message(zmq::socket_t& socket, const Message& message, const zmq::message_t* routing_id) {
   if (routing_id != nullptr) {
     zmq::message_t id(routing_id->data(), routing_id->size());
-    socket.send(id, zmq::send_flags::sndmore);
+    if (!socket.send(id, zmq::send_flags::sndmore)) return false;
   }
   const std::string header = encode_header(message);
   const auto more = [&](std::size_t index) { return index < message.arrays.size() ? zmq::send_flags::sndmore : zmq::send_flags::none; };
-  socket.send(zmq::buffer(header), more(0));
+  // Only the first frame can be refused: once it is queued, libzmq takes the
+  // rest of the message into the same pipe (a multipart message is atomic).
+  if (!socket.send(zmq::buffer(header), more(0))) return false;
   for (std::size_t i = 0; i < message.arrays.size(); ++i) {
     const auto& bytes = message.arrays[i].bytes;
     socket.send(zmq::const_buffer(bytes.data(), bytes.size()), more(i + 1));
   }
+  return true;
 }
 
 std::optional<std::vector<zmq::message_t>> receive_frames(zmq::socket_t& socket, std::chrono::milliseconds timeout) {

@@ -154,6 +154,15 @@ double status_bytes(const std::string& field) {
   return -1.0;
 }
 
+// Under AddressSanitizer the resident set holds its quarantine of freed blocks
+// and their shadow memory as well, so the peak says nothing about the move
+// (seen: 1.03 times the bound, now and then): the rows are checked, the peak not.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool peak_is_measurable = false;
+#else
+constexpr bool peak_is_measurable = true;
+#endif
+
 /// move_matched_rows of `before` by `match` on 1, 2 and 3 threads: every row
 /// where it belongs, and the peak memory of the move below `peak_fraction`
 /// of the new rows above what was resident before it.
@@ -179,7 +188,7 @@ void expect_moved_rows(const PairContacts& before, const std::vector<std::uint32
                                                            : std::equal(row, row + stride, before.history.data() + std::size_t(match[k]) * stride);
       ASSERT_TRUE(as_expected) << "row " << k << ", " << threads << " threads";
     }
-    if (peak_reset && resident > 0.0 && peak > 0.0) {
+    if (peak_is_measurable && peak_reset && resident > 0.0 && peak > 0.0) {
       EXPECT_LT(peak - resident, peak_fraction * double(match.size() * stride * sizeof(double))) << threads << " threads";
     }
   }

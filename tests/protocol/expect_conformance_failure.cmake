@@ -2,11 +2,11 @@
 # if the checker caught it: non-zero exit status, a final "N passed, M failed"
 # line with M > 0, and a line matching EXPECTED_FAILURE.
 #   cmake -DCHECKER=... -DCHECKER_OPTIONS="..." -DSERVER=... -DSERVER_OPTIONS="..."
-#         -DEXPECTED_FAILURE=regex -P expect_conformance_failure.cmake
+#         -DEXPECTED_FAILURE=regex -DLIMIT=seconds -P expect_conformance_failure.cmake
 separate_arguments(checker_options UNIX_COMMAND "${CHECKER_OPTIONS}")
 separate_arguments(server_options UNIX_COMMAND "${SERVER_OPTIONS}")
 execute_process(COMMAND ${CHECKER} ${checker_options} -- ${SERVER} ${server_options}
-                OUTPUT_VARIABLE output ERROR_VARIABLE errors RESULT_VARIABLE status TIMEOUT 50)
+                OUTPUT_VARIABLE output ERROR_VARIABLE errors RESULT_VARIABLE status TIMEOUT ${LIMIT})
 message("${output}${errors}")
 if(status EQUAL 0)
   message(FATAL_ERROR "dfc_conformance passed a server broken with '${SERVER_OPTIONS}' (exit status 0)")

@@ -19,7 +19,8 @@ namespace dfc::protocol {
 /// "DFC-LISTENING <endpoint>".
 inline constexpr std::string_view kListeningMarker = "DFC-LISTENING ";
 
-/// Linger 0 (abort paths never block, ZeroMQ ZMQ_LINGER, zmq_setsockopt(3)) and a
+/// Linger 0 (abort paths never block, ZeroMQ ZMQ_LINGER, zmq_setsockopt(3)), a
+/// send timeout of 0 (a send never blocks: see send_message) and a
 /// transport-level cap on frame size well above the protocol limits, so that an
 /// over-limit frame still reaches the codec and gets a TOO_LARGE reply while a
 /// absurdly large one is dropped by libzmq before it is buffered.
@@ -31,8 +32,11 @@ void configure_socket(zmq::socket_t& socket, const Limits& limits);
 [[nodiscard]] std::optional<std::string> endpoint_problem(std::string_view endpoint);
 
 /// Sends `message` (header frame + one frame per array), preceded by
-/// `routing_id` when replying from a ROUTER socket.
-void send_message(zmq::socket_t& socket, const Message& message, const zmq::message_t* routing_id = nullptr);
+/// `routing_id` when replying from a ROUTER socket. False where the socket
+/// could not queue it within its ZMQ_SNDTIMEO (0 after configure_socket): a
+/// DEALER with no peer to take it (the peer refused the security handshake) or
+/// at its high-water mark. A ROUTER drops a reply to a gone peer and says true.
+bool send_message(zmq::socket_t& socket, const Message& message, const zmq::message_t* routing_id = nullptr);
 
 /// Receives one whole multipart message, or nullopt if none arrives within `timeout`.
 [[nodiscard]] std::optional<std::vector<zmq::message_t>> receive_frames(zmq::socket_t& socket, std::chrono::milliseconds timeout);
