@@ -139,19 +139,23 @@ Message ping() {
   return request;
 }
 
-TEST(Authentication, ACurveSocketAnswersTheKeyHolderAndNoStranger) {
-  zmq::context_t context(1);
+/// The heartbeat's ROUTER, secured as a server secures every socket it binds.
+struct SecuredResponder {
+  zmq::context_t context{1};
   Liveness liveness;
-  const auto keys = authentication::generate_key_pair();
-  // The heartbeat's ROUTER, secured as a server secures every socket it binds.
-  HeartbeatResponder responder(context, "tcp://127.0.0.1:*", liveness, "1.7", keys);
+  authentication::CurveKeyPair keys = authentication::generate_key_pair();
+  HeartbeatResponder responder{context, "tcp://127.0.0.1:*", liveness, "1.7", keys};
+};
 
-  Connection without_key(context, responder.endpoint(), "a stranger without a key");
+TEST(Authentication, ACurveSocketAnswersTheKeyHolderAndNoStranger) {
+  SecuredResponder server;
+  const std::string endpoint = server.responder.endpoint();
+  Connection without_key(server.context, endpoint, "a stranger without a key");
   EXPECT_THROW((void)without_key.request_raw(ping(), 500ms), TimeoutError);
-  Connection other_key(context, responder.endpoint(), "a stranger with another key", Limits{}, authentication::generate_key_pair().public_key);
+  Connection other_key(server.context, endpoint, "a stranger with another key", Limits{}, authentication::generate_key_pair().public_key);
   EXPECT_THROW((void)other_key.request_raw(ping(), 500ms), TimeoutError);
 
-  Connection key_holder(context, responder.endpoint(), "the key holder", Limits{}, keys.public_key);
+  Connection key_holder(server.context, endpoint, "the key holder", Limits{}, server.keys.public_key);
   EXPECT_EQ(key_holder.request_raw(ping(), 2s).type, "pong");
 }
 
@@ -161,11 +165,8 @@ TEST(Authentication, ACurveSocketAnswersTheKeyHolderAndNoStranger) {
 // under the sanitizers, which made the failure come first now and then). It
 // is a TimeoutError at once, naming the key.
 TEST(Authentication, AClientRefusedBeforeItSendsGetsATimeoutNotAHang) {
-  zmq::context_t context(1);
-  Liveness liveness;
-  const auto keys = authentication::generate_key_pair();
-  HeartbeatResponder responder(context, "tcp://127.0.0.1:*", liveness, "1.7", keys);
-  Connection without_key(context, responder.endpoint(), "a stranger without a key");
+  SecuredResponder server;
+  Connection without_key(server.context, server.responder.endpoint(), "a stranger without a key");
   // The handshake of a NULL client with a CURVE server fails within a few
   // milliseconds on loopback; a second leaves no doubt it came first.
   std::this_thread::sleep_for(1s);
