@@ -279,6 +279,9 @@ def merge_resolution(earlier, fresh, scale):
     merged = dict(fresh, g_levels=dict(fresh["g_levels"]), curves=dict(fresh["curves"]))
     added = 0
     for g, level in earlier["g_levels"].items():
+        if g not in earlier.get("curves", {}):
+            print(f"S = {scale:g}, {g} g: the earlier summary has no force band for it (curves_S{scale:g}.json): not kept")
+            continue
         if g not in fresh["g_levels"]:
             merged["g_levels"][g], merged["curves"][g] = level, earlier["curves"][g]
             added += len(level.get("packings", []))
