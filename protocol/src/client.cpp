@@ -11,6 +11,9 @@ namespace dfc::protocol {
 
 namespace {
 constexpr auto kSlice = std::chrono::milliseconds(100);
+// A gap this long between two slices of a wait is a pause of this process
+// itself, not time the server had (see await_reply).
+constexpr auto kPause = std::chrono::seconds(1);
 
 std::string shape_mismatch(const std::string& label, const std::string& what) { return label + " sent " + what; }
 }  // namespace
@@ -30,7 +33,8 @@ void Connection::watch_heartbeat(zmq::context_t& context, const std::string& end
 }
 
 std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, std::chrono::milliseconds deadline) {
-  const auto until = std::chrono::steady_clock::now() + deadline;
+  auto until = std::chrono::steady_clock::now() + deadline;
+  auto last_slice = std::chrono::steady_clock::now();
   skipped_reply_to_.clear();
   if (heartbeat_) heartbeat_->begin_wait();
   while (true) {
@@ -40,7 +44,15 @@ std::optional<Message> Connection::await_reply(std::optional<std::int64_t> seq, 
       if (liveliness == Liveliness::silent) throw HungError(label_, HungError::Kind::silent, "no reply, and " + heartbeat_->silence_description());
       if (liveliness == Liveliness::stalled) throw HungError(label_, HungError::Kind::stalled, "no reply, and " + heartbeat_->stall_description());
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - std::chrono::steady_clock::now());
+    // The whole job stopped and continued (a batch system's suspend, SIGSTOP
+    // and SIGCONT; a suspended virtual machine): the time this process did not
+    // run is no time the server had to answer, so the deadline moves by it, as
+    // the heartbeat's silence rule does not count it either. Measured between
+    // two deadline checks, so a pause anywhere in the slice is seen.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_slice > kPause) until += now - last_slice - kSlice;
+    last_slice = now;
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(until - now);
     if (left.count() <= 0) return std::nullopt;
     auto frames = receive_frames(socket_, std::min(left, std::chrono::milliseconds(kSlice)));
     if (!frames) continue;

@@ -3,6 +3,7 @@
 // and the typed lifecycle against a ServerSession.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <thread>
 
 #include "dfc/common/version.hpp"
@@ -64,6 +65,26 @@ TEST_F(ClientLoopbackTest, NoReplyIsATimeoutErrorNamingTheServerWithinTheDeadlin
   const auto elapsed = std::chrono::steady_clock::now() - started;
   EXPECT_GE(elapsed, 290ms);  // the wait is sliced in whole milliseconds
   EXPECT_LT(elapsed, 1500ms);
+}
+
+// A pause of the client itself (the job suspended and continued) longer than
+// the deadline does not count against the server: it answers 300 ms after the
+// pause and is still in time for a 1.5 s deadline. Without the pause rule the
+// 2 s pause alone ran out the deadline (seen: a suspended study run stopped
+// as "hung" when it was continued).
+TEST_F(ClientLoopbackTest, APauseOfTheClientItselfDoesNotRunOutTheDeadline) {
+  std::atomic<bool> paused = false;
+  connection.set_wait_hook([&] {
+    if (!paused.exchange(true)) std::this_thread::sleep_for(2s);  // the client stopped once
+  });
+  std::jthread server([&] {
+    const auto request = router.receive();
+    if (!request) return;
+    while (!paused) std::this_thread::sleep_for(10ms);
+    std::this_thread::sleep_for(2300ms);  // 300 ms after the client's pause ended
+    router.reply(*request, LoopbackRouter::answer(request->decoded(), "pong"));
+  });
+  EXPECT_EQ(connection.request(request_of("ping"), 1500ms).type, "pong");
 }
 
 TEST_F(ClientLoopbackTest, LateReplyToAnAbandonedRequestIsSkipped) {
