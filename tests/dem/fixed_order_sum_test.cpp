@@ -1,6 +1,6 @@
-// fixed_order_sum: the monitors' sums (measure, momentum, the damping total)
-// run on every thread yet give the same bits for any thread count, and a body
-// of one block keeps the bits of a plain loop.
+// fixed_order_sum: the damping total, summed every step, runs on every thread
+// yet gives the same bits for any thread count, and a body of one block keeps
+// the bits of a plain loop.
 #include "dfc/dem/fixed_order_sum.hpp"
 
 #include <gtest/gtest.h>

@@ -40,7 +40,7 @@ TEST(NeighbourSearch, CandidatePairsEqualBruteForceOnARandomPacking) {
   ParticleStore p = random_packing(3000, 42);
   const double skin = 1e-4;
   std::vector<std::uint32_t> order;
-  const CellGrid grid = build_cell_grid(p.position, 2 * 6e-4 + skin, order);
+  const CellGrid grid = build_cell_grid(p, 2 * 6e-4 + skin, 1, order);
   p.permute(order);
   std::vector<std::uint32_t> first, second;
   find_pair_candidates(grid, p, skin, 2, first, second);
@@ -58,11 +58,37 @@ TEST(NeighbourSearch, CandidatePairsEqualBruteForceOnARandomPacking) {
   EXPECT_EQ(found, expected);
 }
 
+TEST(NeighbourSearch, CandidatePairsEqualBruteForceAcrossTheOriginAndFarFromIt) {
+  // The grid's cells are those of a lattice anchored at 0 (the canonical
+  // order): a body straddling 0 and one far from it are searched as fully.
+  for (const Vec3 shift : {Vec3{-0.01, -0.013, -0.004}, Vec3{-57.3, 1e3 + 0.1234567, 0.0}}) {
+    ParticleStore p = random_packing(3000, 43);
+    for (auto& x : p.position) x = x + shift;
+    const double skin = 1e-4;
+    std::vector<std::uint32_t> order;
+    const CellGrid grid = build_cell_grid(p, 2 * 6e-4 + skin, 1, order);
+    p.permute(order);
+    std::vector<std::uint32_t> first, second;
+    find_pair_candidates(grid, p, skin, 2, first, second);
+    std::set<std::pair<std::int64_t, std::int64_t>> found, expected;
+    for (std::size_t k = 0; k < first.size(); ++k)
+      found.emplace(std::min(p.id[first[k]], p.id[second[k]]), std::max(p.id[first[k]], p.id[second[k]]));
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (std::size_t j = i + 1; j < p.size(); ++j) {
+        const double reach = p.radius[i] + p.radius[j] + skin;
+        if (norm2(p.position[i] - p.position[j]) < reach * reach) expected.emplace(std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]));
+      }
+    EXPECT_GT(expected.size(), 500u);
+    EXPECT_EQ(found.size(), first.size()) << "a pair is listed twice";
+    EXPECT_EQ(found, expected) << "shift " << shift.x << ", " << shift.y << ", " << shift.z;
+  }
+}
+
 TEST(NeighbourSearch, FacetCandidatesEqualBruteForce) {
   ParticleStore p = random_packing(3000, 7);
   const double skin = 1e-4;
   std::vector<std::uint32_t> order;
-  const CellGrid grid = build_cell_grid(p.position, 2 * 6e-4 + skin, order);
+  const CellGrid grid = build_cell_grid(p, 2 * 6e-4 + skin, 1, order);
   p.permute(order);
   const Wall pile = make_wall("pile", make_closed_cylinder_mesh({.axis_x = 0.01, .axis_y = 0.01, .tip_z = 0.01, .radius = 3e-3, .length = 0.05, .sides = 12}),
                               WallMotion::prescribed, test::linear(1e5, 1e5));
@@ -91,7 +117,7 @@ TEST(NeighbourSearch, FacetCandidatesOfAnOpenTubeEqualBruteForce) {
     p.add_sphere(std::int64_t(9000 + f), centre + (5e-4 + skin) * n, 5e-4, 2650.0);
   }
   std::vector<std::uint32_t> order;
-  const CellGrid grid = build_cell_grid(p.position, 2 * 6e-4 + skin, order);
+  const CellGrid grid = build_cell_grid(p, 2 * 6e-4 + skin, 1, order);
   p.permute(order);
   const auto found = find_facet_candidates(grid, p, pile, skin, 6e-4, 2);
   const auto expected = facet_candidates_by_brute_force(p, pile, skin);

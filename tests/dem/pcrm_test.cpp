@@ -111,6 +111,24 @@ TEST(Pcrm, ABodyReleasedIntoItsArchiveGivesTheArchiveItWouldCopy) {
   EXPECT_EQ(body.id.capacity() + body.spheres.capacity() + body.material.capacity() + body.pairs.capacity() + body.rows.capacity(), 0u);
 }
 
+TEST(Pcrm, ARegionOfWholeCellsIsCoveredByThatManyCopiesDespiteRoundOff) {
+  // (lo + 2 l) - lo is 2 l only to round-off; a third copy would tile a
+  // periodic body wrongly (seen: a REV whose deformed cell gave 3 x 3 x 2).
+  int above = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const double l = 8e-3 * (1.0 + 1e-7 * k), lo = 1e-3 * (1.0 + 3e-7 * k);
+    const Vec3 edge{l, l, l}, low{lo, -lo, 0.0};
+    const Vec3 high = low + 2.0 * edge;
+    above += (high.x - low.x) / l > 2.0 || (high.y - low.y) / l > 2.0 ? 1 : 0;
+    const auto copies = copies_to_cover(edge, low, high);
+    ASSERT_EQ(copies[0], 2) << "k = " << k;
+    ASSERT_EQ(copies[1], 2) << "k = " << k;
+    ASSERT_EQ(copies[2], 2) << "k = " << k;
+  }
+  EXPECT_GT(above, 0);  // the round-off that the rule must absorb occurs
+  EXPECT_EQ(copies_to_cover({1, 1, 1}, {0, 0, 0}, {2.001, 1, 0.5})[0], 3);  // a real part of a copy still counts
+}
+
 TEST(Pcrm, ReplicatedTwiceEachWayTheBodyHasTheRevsStressAndEquilibrium) {
   // A 2 x 2 x 2 tiling of a periodic REV is the same infinite packing: every
   // sphere has the REV's neighbours, bonds and bond loads, so the cell stress

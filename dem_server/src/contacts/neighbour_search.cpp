@@ -13,35 +13,51 @@
 namespace dfc::dem {
 
 std::array<std::int64_t, 3> CellGrid::cell_of(const Vec3& x) const noexcept {
-  const auto axis = [&](double coordinate, double o, std::int64_t n) {
-    const double c = std::floor((coordinate - o) / cell_size);
-    if (!(c > 0.0)) return std::int64_t{0};  // also NaN
-    return c >= double(n - 1) ? n - 1 : std::int64_t(c);
-  };
-  return {axis(x.x, origin.x, dims[0]), axis(x.y, origin.y, dims[1]), axis(x.z, origin.z, dims[2])};
+  const double coordinate[3] = {x.x, x.y, x.z};
+  const double corner[3] = {origin.x, origin.y, origin.z};
+  std::array<std::int64_t, 3> c{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    // Open axes: the cell of the lattice anchored at 0, an integer offset from
+    // the grid's first cell (exact, whatever part of space the grid covers);
+    // periodic axes: from the cell's lower face.
+    const double k = periodic[a] ? std::floor((coordinate[a] - corner[a]) / cell_size) : std::floor(coordinate[a] / cell_size) - double(first_cell[a]);
+    c[a] = !(k > 0.0) ? 0 : k >= double(dims[a] - 1) ? dims[a] - 1 : std::int64_t(k);  // also NaN: cell 0
+  }
+  return c;
 }
 
 namespace {
 
-/// The grid over [lo, lo + extent] (open axes: cells_along = floor(e/size)+1;
-/// periodic axes: floor(L/size) cells spanning the cell exactly), and the
-/// counting sort of the slots by cell (stable, hence deterministic).
-CellGrid build_grid(std::span<const Vec3> positions, double min_cell_size, const Vec3& lo, const Vec3& extent, std::array<bool, 3> periodic,
-                    std::vector<std::uint32_t>& order) {
+/// The grid over [lo, lo + extent] (open axes: the cells of the lattice
+/// anchored at 0 that hold lo to lo + extent; periodic axes: floor(L/size)
+/// cells spanning the cell exactly), and the order of the slots by (cell,
+/// particle id): a counting sort by cell, then each cell's slots by id.
+CellGrid build_grid(const ParticleStore& particles, double min_cell_size, const Vec3& lo, const Vec3& extent, std::array<bool, 3> periodic,
+                    int threads, std::vector<std::uint32_t>& order) {
+  const auto& positions = particles.position;
   CellGrid grid;
-  grid.origin = lo;
   grid.periodic = periodic;
   grid.cell_size = min_cell_size > 0.0 ? min_cell_size : 1.0;  // no particles with size: any cell will do
   const double max_cells = 4.0 * double(positions.size()) + 64.0;
-  auto cells_along = [&](double e, bool wraps) { return wraps ? std::max(1.0, std::floor(e / grid.cell_size)) : std::floor(e / grid.cell_size) + 1.0; };
-  auto total_cells = [&] { return cells_along(extent.x, periodic[0]) * cells_along(extent.y, periodic[1]) * cells_along(extent.z, periodic[2]); };
+  const double low[3] = {lo.x, lo.y, lo.z};
+  const double length[3] = {extent.x, extent.y, extent.z};
+  const auto cells_along = [&](std::size_t a) {
+    if (periodic[a]) return std::max(1.0, std::floor(length[a] / grid.cell_size));
+    return std::floor((low[a] + length[a]) / grid.cell_size) - std::floor(low[a] / grid.cell_size) + 1.0;
+  };
+  const auto total_cells = [&] { return cells_along(0) * cells_along(1) * cells_along(2); };
   double total = total_cells();
   while (total > max_cells) {  // sparse or exploded packing: coarser cells
     grid.cell_size *= std::max(1.01, std::cbrt(total / max_cells));
     total = total_cells();
   }
-  grid.dims = {std::int64_t(cells_along(extent.x, periodic[0])), std::int64_t(cells_along(extent.y, periodic[1])),
-               std::int64_t(cells_along(extent.z, periodic[2]))};
+  double corner[3]{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    grid.dims[a] = std::int64_t(cells_along(a));
+    grid.first_cell[a] = periodic[a] ? 0 : std::int64_t(std::floor(low[a] / grid.cell_size));
+    corner[a] = periodic[a] ? low[a] : double(grid.first_cell[a]) * grid.cell_size;
+  }
+  grid.origin = {corner[0], corner[1], corner[2]};
 
   std::vector<std::uint32_t> cell(positions.size());
   grid.cell_start.assign(grid.cell_count() + 1, 0);
@@ -54,6 +70,16 @@ CellGrid build_grid(std::span<const Vec3> positions, double min_cell_size, const
   order.resize(positions.size());
   std::vector<std::uint32_t> fill(grid.cell_start.begin(), grid.cell_start.end() - 1);
   for (std::size_t i = 0; i < positions.size(); ++i) order[fill[cell[i]]++] = std::uint32_t(i);
+  // Within a cell by id, not by the slots' previous order: the order then
+  // depends on the positions and ids alone, not on the history of the store.
+  const auto cells = std::int64_t(grid.cell_count());
+  const auto& id = particles.id;
+#pragma omp parallel for schedule(static) num_threads(threads) if(std::int64_t(positions.size()) >= min_parallel_items)
+  for (std::int64_t c = 0; c < cells; ++c) {
+    const auto begin = order.begin() + std::ptrdiff_t(grid.cell_start[std::size_t(c)]);
+    const auto end = order.begin() + std::ptrdiff_t(grid.cell_start[std::size_t(c) + 1]);
+    if (end - begin > 1) std::sort(begin, end, [&](std::uint32_t a, std::uint32_t b) { return id[a] < id[b]; });
+  }
   return grid;
 }
 
@@ -72,18 +98,19 @@ std::pair<Vec3, Vec3> position_bounds(std::span<const Vec3> positions) {
 
 }  // namespace
 
-CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, std::vector<std::uint32_t>& order) {
-  const auto [lo, hi] = position_bounds(positions);
-  return build_grid(positions, min_cell_size, lo, hi - lo, {false, false, false}, order);
+CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, int threads, std::vector<std::uint32_t>& order) {
+  const auto [lo, hi] = position_bounds(particles.position);
+  return build_grid(particles, min_cell_size, lo, hi - lo, {false, false, false}, threads, order);
 }
 
-CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, const PeriodicCell& cell, std::vector<std::uint32_t>& order) {
-  auto [lo, hi] = position_bounds(positions);
+CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, const PeriodicCell& cell, int threads,
+                         std::vector<std::uint32_t>& order) {
+  auto [lo, hi] = position_bounds(particles.position);
   // Periodic axes span the cell; open axes the particles (they may leave the box there).
   const auto pick = [&](int a, double open_value, double cell_value) { return cell.periodic[std::size_t(a)] ? cell_value : open_value; };
   lo = {pick(0, lo.x, cell.lo.x), pick(1, lo.y, cell.lo.y), pick(2, lo.z, cell.lo.z)};
   hi = {pick(0, hi.x, cell.hi.x), pick(1, hi.y, cell.hi.y), pick(2, hi.z, cell.hi.z)};
-  CellGrid grid = build_grid(positions, min_cell_size, lo, hi - lo, cell.periodic, order);
+  CellGrid grid = build_grid(particles, min_cell_size, lo, hi - lo, cell.periodic, threads, order);
   grid.space = PeriodicSpace(cell);
   return grid;
 }

@@ -53,7 +53,11 @@ std::array<int, 3> copies_to_cover(const Vec3& cell_length, const Vec3& lo, cons
   const double extent[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
   const double edge[3] = {cell_length.x, cell_length.y, cell_length.z};
   std::array<int, 3> copies{};
-  for (std::size_t a = 0; a < 3; ++a) copies[a] = std::max(1, int(std::ceil(extent[a] / edge[a])));
+  // An extent of a whole number of edges, (lo + k l) - lo, is k l only to
+  // round-off: one more copy there would tile a periodic body wrongly (its
+  // pairs across the faces wrap to the trimmed copy). 1e-9 of an edge is far
+  // below any sphere, so a part of a copy that thin holds none.
+  for (std::size_t a = 0; a < 3; ++a) copies[a] = std::max(1, int(std::ceil(extent[a] / edge[a] * (1.0 - 1e-9))));
   return copies;
 }
 

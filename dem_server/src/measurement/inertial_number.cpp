@@ -2,10 +2,11 @@
 #include "dfc/dem/inertial_number.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
-#include "dfc/dem/fixed_order_sum.hpp"
+#include "dfc/dem/exact_sum.hpp"
 
 namespace dfc::dem {
 
@@ -14,26 +15,15 @@ double inertial_number(double shear_rate, double grain_diameter, double pressure
   return std::min(unloaded_inertial_number, shear_rate * grain_diameter / std::sqrt(pressure / grain_density));
 }
 
-namespace {
-struct GrainSums {
-  double diameter = 0.0, mass = 0.0, volume = 0.0;
-  GrainSums& operator+=(const GrainSums& o) {
-    diameter += o.diameter;
-    mass += o.mass;
-    volume += o.volume;
-    return *this;
-  }
-};
-}  // namespace
 
 GrainScale grain_scale(const ParticleStore& particles) {
   const std::size_t n = particles.size();
   if (n == 0) return {};
-  const GrainSums sums = fixed_order_sum<GrainSums>(n, 1, [&](std::size_t i) {
+  const auto [diameter, mass, volume] = exact_sums<3>(n, 1, [&](std::size_t i) {
     const double r = particles.radius[i];
-    return GrainSums{2.0 * r, particles.mass[i], 4.0 / 3.0 * std::numbers::pi * r * r * r};
+    return std::array<double, 3>{2.0 * r, particles.mass[i], 4.0 / 3.0 * std::numbers::pi * r * r * r};
   });
-  return {sums.diameter / double(n), sums.mass / sums.volume};
+  return {diameter / double(n), mass / volume};
 }
 
 }  // namespace dfc::dem

@@ -1,10 +1,13 @@
 #pragma once
-// Sums over particles or contacts in an order fixed by the item count alone,
-// computed on every thread. Why: the monitors of a coupled advance (measure,
-// momentum, the damping total) summed serially were the largest serial part
-// of the paper model's run after the rebuild (docs/dem_benchmarks.md, "Serial
+// Sums over particles in an order fixed by the item count alone, computed on
+// every thread: the local-damping total, summed every step (the monitors of
+// an advance are exact sums, exact_sum.hpp, at 2-4 times the cost a term).
+// Why: summed serially, the monitors were the largest serial part of the
+// paper model's run after the rebuild (docs/dem_benchmarks.md, "Serial
 // fraction"); an OpenMP reduction would make the last bits depend on the
-// thread count (CONTRIBUTING.md §11). Blocks of fixed_sum_block items are each
+// thread count (CONTRIBUTING.md §11). Not independent of how the items are
+// split between processes: a decomposed run needs an exact sum here too
+// (docs/determinism.md). Blocks of fixed_sum_block items are each
 // summed in index order, then the block sums in block order: the association
 // depends on n alone, so every thread count gives the same bits. A body of at
 // most fixed_sum_block items is one block, summed as a plain loop.

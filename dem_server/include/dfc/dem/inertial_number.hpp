@@ -25,8 +25,8 @@ struct GrainScale {
   double density = 0.0;        ///< kg/m3, their total mass over their total volume
 };
 
-/// The particles' mean diameter and grain density, summed in the fixed order of
-/// fixed_order_sum.hpp (the same bits for any thread count).
+/// The particles' mean diameter and grain density, summed exactly
+/// (exact_sum.hpp: the same bits however the particles are ordered or split).
 [[nodiscard]] GrainScale grain_scale(const ParticleStore& particles);
 
 }  // namespace dfc::dem

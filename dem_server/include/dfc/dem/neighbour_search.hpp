@@ -7,6 +7,16 @@
 // simulation.cpp). Both searches produce their lists in an order fixed by the
 // slots alone, whatever the thread count, so the force sums built on them are
 // reproducible bit for bit.
+//
+// The slot order itself is canonical: by the cell of a lattice anchored at
+// the origin of space (cells of the grid's size), then by particle id. Two
+// stores holding the same particles near a place (the whole body, or the part
+// with its halo that one process of a decomposed run holds) order them alike,
+// whatever order they came in, so each particle meets its partners in the
+// same order and its force sum has the same bits (issue "Beyond one machine";
+// tests CanonicalOrder.*). What must agree for that: the cell size (from the
+// largest radius and the skin of the whole body) and, on periodic axes, the
+// periodic cell.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +32,9 @@ namespace dfc::dem {
 
 struct CellGrid {
   Vec3 origin;             ///< m, corner of cell (0,0,0)
+  /// Open axes: the index along the lattice anchored at 0 of cell 0 (origin =
+  /// first_cell x cell_size); periodic axes: 0.
+  std::array<std::int64_t, 3> first_cell{0, 0, 0};
   double cell_size = 0.0;  ///< m, >= 2 r_max + skin so that only adjacent cells can hold partners
   std::array<std::int64_t, 3> dims{1, 1, 1};
   /// Periodic axes: the grid spans the cell exactly (the last cell takes the
@@ -41,14 +54,15 @@ struct CellGrid {
   }
 };
 
-/// Grid over the bounding box of `positions` with cells of at least
+/// Grid over the bounding box of the particles with cells of at least
 /// `min_cell_size` (grown if needed to keep the cell count below ~4 per
 /// particle, so a particle flying away cannot exhaust memory). `order`
-/// receives the slots sorted by cell, stable: new slot k = old slot order[k].
-[[nodiscard]] CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, std::vector<std::uint32_t>& order);
+/// receives the slots in the canonical order, by cell, then by id (on
+/// `threads`): new slot k = old slot order[k].
+[[nodiscard]] CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, int threads, std::vector<std::uint32_t>& order);
 /// The same in a periodic cell: on its periodic axes the grid spans [lo, hi)
 /// (positions must be wrapped); on its open axes the particles' extent.
-[[nodiscard]] CellGrid build_cell_grid(std::span<const Vec3> positions, double min_cell_size, const PeriodicCell& cell,
+[[nodiscard]] CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, const PeriodicCell& cell, int threads,
                                        std::vector<std::uint32_t>& order);
 
 /// Whether two spheres `branch` apart (centre to centre) are candidates:
