@@ -32,28 +32,44 @@ namespace {
 /// anchored at 0 that hold lo to lo + extent; periodic axes: floor(L/size)
 /// cells spanning the cell exactly), and the order of the slots by (cell,
 /// particle id): a counting sort by cell, then each cell's slots by id.
-CellGrid build_grid(const ParticleStore& particles, double min_cell_size, const Vec3& lo, const Vec3& extent, std::array<bool, 3> periodic,
+/// Cells along each axis of a grid of `size` over [lo, lo + extent].
+std::array<double, 3> cells_along(double size, const Vec3& lo, const Vec3& extent, std::array<bool, 3> periodic) {
+  const double low[3] = {lo.x, lo.y, lo.z};
+  const double length[3] = {extent.x, extent.y, extent.z};
+  std::array<double, 3> cells{};
+  for (std::size_t a = 0; a < 3; ++a)
+    cells[a] = periodic[a] ? std::max(1.0, std::floor(length[a] / size)) : std::floor((low[a] + length[a]) / size) - std::floor(low[a] / size) + 1.0;
+  return cells;
+}
+
+/// The cell size of a grid over [lo, lo + extent] holding `count` particles:
+/// min_cell_size, grown if needed to keep the cell count below ~4 per particle.
+double grid_cell_size(double min_cell_size, const Vec3& lo, const Vec3& extent, std::array<bool, 3> periodic, std::size_t count) {
+  double size = min_cell_size > 0.0 ? min_cell_size : 1.0;  // no particles with size: any cell will do
+  const double max_cells = 4.0 * double(count) + 64.0;
+  const auto total_cells = [&] {
+    const auto c = cells_along(size, lo, extent, periodic);
+    return c[0] * c[1] * c[2];
+  };
+  double total = total_cells();
+  while (total > max_cells) {  // sparse or exploded packing: coarser cells
+    size *= std::max(1.01, std::cbrt(total / max_cells));
+    total = total_cells();
+  }
+  return size;
+}
+
+CellGrid build_grid(const ParticleStore& particles, double cell_size, const Vec3& lo, const Vec3& extent, std::array<bool, 3> periodic,
                     int threads, std::vector<std::uint32_t>& order) {
   const auto& positions = particles.position;
   CellGrid grid;
   grid.periodic = periodic;
-  grid.cell_size = min_cell_size > 0.0 ? min_cell_size : 1.0;  // no particles with size: any cell will do
-  const double max_cells = 4.0 * double(positions.size()) + 64.0;
+  grid.cell_size = cell_size;
   const double low[3] = {lo.x, lo.y, lo.z};
-  const double length[3] = {extent.x, extent.y, extent.z};
-  const auto cells_along = [&](std::size_t a) {
-    if (periodic[a]) return std::max(1.0, std::floor(length[a] / grid.cell_size));
-    return std::floor((low[a] + length[a]) / grid.cell_size) - std::floor(low[a] / grid.cell_size) + 1.0;
-  };
-  const auto total_cells = [&] { return cells_along(0) * cells_along(1) * cells_along(2); };
-  double total = total_cells();
-  while (total > max_cells) {  // sparse or exploded packing: coarser cells
-    grid.cell_size *= std::max(1.01, std::cbrt(total / max_cells));
-    total = total_cells();
-  }
+  const auto along = cells_along(grid.cell_size, lo, extent, periodic);
   double corner[3]{};
   for (std::size_t a = 0; a < 3; ++a) {
-    grid.dims[a] = std::int64_t(cells_along(a));
+    grid.dims[a] = std::int64_t(along[a]);
     grid.first_cell[a] = periodic[a] ? 0 : std::int64_t(std::floor(low[a] / grid.cell_size));
     corner[a] = periodic[a] ? low[a] : double(grid.first_cell[a]) * grid.cell_size;
   }
@@ -98,9 +114,13 @@ std::pair<Vec3, Vec3> position_bounds(std::span<const Vec3> positions) {
 
 }  // namespace
 
-CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, int threads, std::vector<std::uint32_t>& order) {
+CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, int threads, std::vector<std::uint32_t>& order,
+                         const BodyBounds* body) {
   const auto [lo, hi] = position_bounds(particles.position);
-  return build_grid(particles, min_cell_size, lo, hi - lo, {false, false, false}, threads, order);
+  constexpr std::array<bool, 3> open{false, false, false};
+  const double size = body ? grid_cell_size(min_cell_size, body->lo, body->hi - body->lo, open, body->count)
+                           : grid_cell_size(min_cell_size, lo, hi - lo, open, particles.size());
+  return build_grid(particles, size, lo, hi - lo, open, threads, order);
 }
 
 CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, const PeriodicCell& cell, int threads,
@@ -110,7 +130,8 @@ CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, c
   const auto pick = [&](int a, double open_value, double cell_value) { return cell.periodic[std::size_t(a)] ? cell_value : open_value; };
   lo = {pick(0, lo.x, cell.lo.x), pick(1, lo.y, cell.lo.y), pick(2, lo.z, cell.lo.z)};
   hi = {pick(0, hi.x, cell.hi.x), pick(1, hi.y, cell.hi.y), pick(2, hi.z, cell.hi.z)};
-  CellGrid grid = build_grid(particles, min_cell_size, lo, hi - lo, cell.periodic, threads, order);
+  CellGrid grid = build_grid(particles, grid_cell_size(min_cell_size, lo, hi - lo, cell.periodic, particles.size()), lo, hi - lo, cell.periodic,
+                             threads, order);
   grid.space = PeriodicSpace(cell);
   return grid;
 }

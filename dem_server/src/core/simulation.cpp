@@ -165,10 +165,52 @@ void Simulation::check_cell_width(double reach) const {
   }
 }
 
+Simulation::SearchRadii Simulation::search_radii() const {
+  SearchRadii r{};
+  r.r_max = std::max(largest_radius(particles_), body_r_max_);
+  r.skin = settings_.skin > 0.0 ? settings_.skin : 0.2 * r.r_max;
+  // Installing bonds needs every pair within the bonding gap, which may exceed the skin.
+  r.install = settings_.particle_law.bonded() && !bonds_installed_ && (settings_.install_bonds_at_start || install_requested_);
+  r.join = settings_.particle_law.bonded() && join_materials_requested_;
+  r.search = r.install || r.join ? std::max(r.skin, 1.001 * materials_.largest_bond_gap()) : r.skin;
+  return r;
+}
+
+double Simulation::next_search_reach() const {
+  const SearchRadii r = search_radii();
+  return 2.0 * r.r_max + r.search;
+}
+
+void Simulation::replace_body(ParticleStore particles, HistoryArchive pairs, std::vector<HistoryArchive> wall_rows) {
+  if (wall_rows.size() != walls_.size())
+    throw std::logic_error("replace_body: " + std::to_string(wall_rows.size()) + " wall archives for " + std::to_string(walls_.size()) + " walls");
+  ids_.clear();
+  for (const std::int64_t id : particles.id)
+    if (!ids_.insert(id).second) throw std::logic_error("replace_body: particle id " + std::to_string(id) + " given twice");
+  particles_ = std::move(particles);
+  seeded_pairs_ = std::move(pairs);
+  seeded_walls_ = std::move(wall_rows);
+  pairs_ = PairContacts{};
+  for (auto& w : wall_contacts_) w = WallContacts{};
+  critical_step_.reset();
+  stale_ = true;
+}
+
+void Simulation::rebuild_if_stale() {
+  if (stale_) rebuild();
+}
+
+bool Simulation::verlet_skin_used_up(double max_particle_displacement) const noexcept {
+  // Two particles approach by at most 2 max|dx|, a particle and a facet by
+  // max|dx| + max|dx_wall|; either must stay below the skin.
+  return 2.0 * max_particle_displacement + affine_approach_ >= skin_ || max_particle_displacement + max_wall_displacement_ >= skin_;
+}
+
 void Simulation::rebuild() {
-  const double r_max = largest_radius(particles_);
+  const SearchRadii radii = search_radii();
+  const double r_max = radii.r_max;
   r_max_ = r_max;
-  skin_ = settings_.skin > 0.0 ? settings_.skin : 0.2 * r_max;
+  skin_ = radii.skin;
   if (cell_)
     for (auto& x : particles_.position) x = cell_->wrap(x);  // history is keyed by ids: wrapping keeps it
 
@@ -183,18 +225,19 @@ void Simulation::rebuild() {
   pairs_ = PairContacts{};
   seeded_pairs_.reset();
   std::vector<HistoryArchive> wall_archives;
-  for (const auto& wc : wall_contacts_) wall_archives.push_back(archive_history(wc, particles_));
+  if (seeded_walls_) wall_archives = std::move(*seeded_walls_);
+  else
+    for (const auto& wc : wall_contacts_) wall_archives.push_back(archive_history(wc, particles_));
+  seeded_walls_.reset();
 
   // 2. Cell grid; re-sort the particles by cell so that neighbours share cache lines,
   // in the canonical order (neighbour_search.hpp).
-  // Installing bonds needs every pair within the bonding gap, which may exceed the skin.
-  const bool install = settings_.particle_law.bonded() && !bonds_installed_ && (settings_.install_bonds_at_start || install_requested_);
-  const bool join = settings_.particle_law.bonded() && join_materials_requested_;
-  const double search = install || join ? std::max(skin_, 1.001 * materials_.largest_bond_gap()) : skin_;
+  const bool install = radii.install, join = radii.join;
+  const double search = radii.search;
   std::vector<std::uint32_t> order;
   if (cell_) check_cell_width(2.0 * r_max + search);
   const CellGrid grid = cell_ ? build_cell_grid(particles_, 2.0 * r_max + search, *cell_, threads_, order)
-                              : build_cell_grid(particles_, 2.0 * r_max + search, threads_, order);
+                              : build_cell_grid(particles_, 2.0 * r_max + search, threads_, order, body_bounds_ ? &*body_bounds_ : nullptr);
   particles_.permute(order, threads_);
   work_progress::advance();  // each phase of a large body's rebuild may take a while: progress between them
 
@@ -448,10 +491,7 @@ void Simulation::step(double dt, ContactRecord record) {
   ++step_;
   work_progress::advance();  // the heartbeat's proof that the main thread works (SPEC.md §9.1)
 
-  // Verlet criterion: two particles approach by at most 2 max|dx|, a particle
-  // and a facet by max|dx| + max|dx_wall|; either must stay below the skin.
-  const double max_particle = std::sqrt(motion.max_displacement2);
-  if (2.0 * max_particle + affine_approach_ >= skin_ || max_particle + max_wall_displacement_ >= skin_) stale_ = true;
+  if (verlet_skin_used_up(std::sqrt(motion.max_displacement2))) stale_ = true;
 }
 
 void Simulation::set_local_damping(double alpha) {

@@ -203,6 +203,8 @@ struct SimulationLayout {
   ParticleMaterials materials_;
   int threads_;
   double skin_, r_max_;
+  double body_r_max_;                     // not saved: a decomposed run sets it before each rebuild
+  std::optional<BodyBounds> body_bounds_;  // likewise
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
   std::vector<std::int64_t> ids_at_rebuild_;  // not saved: the first rebuild after a restore carries history by id
@@ -223,6 +225,7 @@ struct SimulationLayout {
   bool stale_, bonds_installed_, install_requested_, join_materials_requested_;
   SeamBalanceReport seam_report_;
   std::optional<HistoryArchive> seeded_pairs_;
+  std::optional<std::vector<HistoryArchive>> seeded_walls_;  // not saved: replace_body's, taken by the rebuild that follows it at once
   std::optional<PeriodicCell> cell_;
   double affine_approach_;
 };

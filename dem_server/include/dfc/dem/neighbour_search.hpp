@@ -54,12 +54,22 @@ struct CellGrid {
   }
 };
 
+/// The extent of a whole body (a decomposed run's parts build their grids
+/// with the cell size the whole body's grid would have).
+struct BodyBounds {
+  Vec3 lo, hi;            ///< m, bounding box of the particle centres
+  std::size_t count = 0;  ///< particles
+};
+
 /// Grid over the bounding box of the particles with cells of at least
 /// `min_cell_size` (grown if needed to keep the cell count below ~4 per
 /// particle, so a particle flying away cannot exhaust memory). `order`
 /// receives the slots in the canonical order, by cell, then by id (on
 /// `threads`): new slot k = old slot order[k].
-[[nodiscard]] CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, int threads, std::vector<std::uint32_t>& order);
+/// With `body`, the cell size is the one the whole body's grid would take
+/// (its coarsening decided by the body's extent and count, not this part's).
+[[nodiscard]] CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, int threads, std::vector<std::uint32_t>& order,
+                                       const BodyBounds* body = nullptr);
 /// The same in a periodic cell: on its periodic axes the grid spans [lo, hi)
 /// (positions must be wrapped); on its open axes the particles' extent.
 [[nodiscard]] CellGrid build_cell_grid(const ParticleStore& particles, double min_cell_size, const PeriodicCell& cell, int threads,

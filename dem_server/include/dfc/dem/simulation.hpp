@@ -40,6 +40,7 @@
 #include "dfc/dem/contact_law_registry.hpp"
 #include "dfc/dem/contact_lists.hpp"
 #include "dfc/dem/particle_materials.hpp"
+#include "dfc/dem/neighbour_search.hpp"
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/periodic_cell.hpp"
 #include "dfc/dem/seam_balance.hpp"
@@ -83,6 +84,9 @@ class Simulation {
   /// Direct access to the particle arrays (e.g. to set velocities); the
   /// neighbour lists are rebuilt before the next step.
   [[nodiscard]] ParticleStore& particles_for_edit();
+  /// The particle arrays for a change of positions, velocities and spins
+  /// alone (a decomposed run's halo update): the lists and the critical step stay.
+  [[nodiscard]] ParticleStore& particle_motion_for_edit() noexcept { return particles_; }
   /// Returns the wall's index.
   std::size_t add_wall(Wall wall);
   /// Replaces a wall (e.g. a new interface mesh); its contact history is dropped.
@@ -129,6 +133,41 @@ class Simulation {
   /// history, before the first step (UserError after it): e.g. generated
   /// spheres that a coupling wall, known only later, cuts. Returns how many.
   std::size_t remove_particles_before_start(const std::function<bool(std::size_t slot)>& remove);
+  // A part of a decomposed body (distributed_simulation.hpp) -----------------
+  // A process of a decomposed run holds its own particles and a halo of its
+  // neighbours'. It steps them all like a whole body; these calls let the
+  // decomposition keep its part's lists those of the whole body.
+  /// The whole body's largest radius (m) and extent, as every process has
+  /// them: the skin and the cell size of the next rebuild are the whole
+  /// body's, so every part orders its particles on the same lattice
+  /// (neighbour_search.hpp). Open space only (no periodic cell).
+  void set_body_extent(double largest_radius, const BodyBounds& bounds) noexcept {
+    body_r_max_ = largest_radius;
+    body_bounds_ = bounds;
+  }
+  /// m, how far apart the centres of two candidates of the next rebuild can
+  /// be: 2 r_max + the search distance (the skin, or the bonding gap while
+  /// bonds are installed). A part's halo must be at least this wide.
+  [[nodiscard]] double next_search_reach() const;
+  /// Replaces every particle and the pair and wall history (rows keyed as
+  /// archive_history keys them; walls: one archive per wall, in order) and
+  /// forces a rebuild; step counter, walls, bonds-installed flag and
+  /// requests stay. Keys must name particles that exist.
+  void replace_body(ParticleStore particles, HistoryArchive pairs, std::vector<HistoryArchive> wall_rows);
+  /// seed_pair_history()'s rows until the next rebuild takes them.
+  [[nodiscard]] const std::optional<HistoryArchive>& seeded_pair_history() const noexcept { return seeded_pairs_; }
+  /// Rebuilds the lists now if the next step would (so slots are final).
+  void rebuild_if_stale();
+  /// Particle positions at the last rebuild, by slot (the Verlet references).
+  [[nodiscard]] std::span<const Vec3> reference_positions() const noexcept { return reference_positions_; }
+  /// Whether a particle that moved `max_particle_displacement` m since the
+  /// last rebuild used up the Verlet skin (with the walls' and the cell's
+  /// motion): the test each step makes over its own particles.
+  [[nodiscard]] bool verlet_skin_used_up(double max_particle_displacement) const noexcept;
+  /// Sets whether the next step rebuilds: a decomposed run replaces each
+  /// part's own decision by the whole body's.
+  void set_lists_stale(bool stale) noexcept { stale_ = stale; }
+
   /// Makes the space periodic on cell.periodic's axes (and deformable).
   /// Throws UserError if a periodic edge is shorter than 2 (2 r_max + skin).
   void set_periodic_cell(const PeriodicCell& cell);
@@ -187,6 +226,12 @@ class Simulation {
   void check_pair_state(const StateReader& in) const;
 
   void rebuild();
+  /// The rebuild's radii: r_max (with the body's), skin and search distance.
+  struct SearchRadii {
+    double r_max, skin, search;
+    bool install, join;
+  };
+  [[nodiscard]] SearchRadii search_radii() const;
   /// Appends the pairs of `archive` with a bond (ever) that the search did not find.
   void append_persistent_pairs(const HistoryArchive& archive);
   /// The same for a rebuild by slot: the bonded pairs of `before` that no new
@@ -224,6 +269,8 @@ class Simulation {
   int threads_ = 1;
   double skin_ = 0.0;
   double r_max_ = 0.0;  ///< m, largest radius at the last rebuild
+  double body_r_max_ = 0.0;  ///< m, set_body_extent (0: this body's own)
+  std::optional<BodyBounds> body_bounds_;  ///< set_body_extent
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
   std::vector<std::int64_t> ids_at_rebuild_;  ///< particle ids by slot after the last rebuild: pairs_ may carry history by slot
@@ -250,6 +297,7 @@ class Simulation {
   SeamBalanceReport seam_report_;
 
   std::optional<HistoryArchive> seeded_pairs_;  ///< seed_pair_history(), consumed by the next rebuild
+  std::optional<std::vector<HistoryArchive>> seeded_walls_;  ///< replace_body()'s wall rows, consumed by the next rebuild
 
   std::optional<PeriodicCell> cell_;
   double affine_approach_ = 0.0;  ///< m, bound on how far the cell's deformation moved two partners together since the last rebuild

@@ -1,0 +1,113 @@
+#pragma once
+// DistributedSimulation: one Simulation decomposed over the processes of an
+// MPI communicator, with the same bits as the whole body on one process for
+// any process count (docs/determinism.md; issue "Beyond one machine").
+//
+// Each process holds the particles of its box of a weighted recursive
+// coordinate bisection (rcb_decomposition.hpp) and a halo: every particle
+// within the search reach (2 r_max + skin) of the box, and every partner of a
+// bond (intact or broken) of its own particles however far. It steps them all
+// as a whole body (a local Simulation): a pair that crosses a boundary is
+// computed on both sides from the same inputs, so no force is sent back
+// (LAMMPS' "newton off"). After each step the owners send their particles'
+// motion to the processes that hold them in a halo, and the Verlet test is
+// made over the whole body (a max over processes, exact). When it calls for
+// a rebuild, the body is decomposed again: every particle, with the history
+// of its contacts and bonds (rows keyed by particle ids) and of its wall
+// contacts, moves to the process that owns its position now.
+//
+// Why the bits match the whole body's: the local Simulation orders its slots
+// canonically (neighbour_search.hpp), with the whole body's largest radius,
+// so an owned particle meets all its partners in the order the whole body's
+// lists give them, from inputs that are the same bits; its force and motion
+// are then the same bits. Halo particles at the edge miss partners and go
+// wrong, but their motion is overwritten by their owners' every step, and
+// their pair history is never sent on (only rows with an owned particle are).
+//
+// Walls are held by every process and move alike. Not yet decomposed (the
+// next steps, docs/determinism.md): the wall force sums, servos, periodic
+// cells, monitors and checkpoints.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <mpi.h>
+
+#include "dfc/dem/rcb_decomposition.hpp"
+#include "dfc/dem/simulation.hpp"
+
+namespace dfc::dem {
+
+/// One particle as it travels between processes (plain bytes: the processes
+/// of a run share one binary format).
+struct ParticleRecord {
+  std::int64_t id = 0;
+  Vec3 position, velocity, angular_velocity, force, moment;
+  double radius = 0.0, mass = 0.0, inertia = 0.0;
+  std::int32_t owner = 0;  ///< rank that owns it after the decomposition
+  std::uint16_t material = 0;
+};
+
+/// What the last decomposition and the steps since moved (benchmarks, tests).
+struct DecompositionStats {
+  std::size_t decompositions = 0;
+  std::size_t owned = 0;            ///< particles this process owns
+  std::size_t halo = 0;             ///< particles it holds for others
+  std::size_t migrated = 0;         ///< owned particles that came from another process at the last decomposition
+  std::size_t halo_bytes_per_step = 0;  ///< bytes this process sends after each step
+  double step_seconds = 0.0;       ///< wall time in the local steps
+  double halo_seconds = 0.0;       ///< wall time in the halo updates and the Verlet test (waits for the others included)
+  double decompose_seconds = 0.0;  ///< wall time in the decompositions
+};
+
+class DistributedSimulation {
+ public:
+  /// `local`: built with the same settings, walls and set-up calls on every
+  /// process of `comm` (e.g. install_bonds_now); on rank 0 it holds the whole
+  /// body (with any seeded pair history, or stepped: its lists' history is
+  /// sent), on the others either no particles or the same body built and
+  /// stepped alike (then dropped at the first decomposition: a generation
+  /// or a seam balance, which solves over the whole body, runs on every
+  /// process as on one). Not periodic (UserError). `local` must outlive this
+  /// object and is stepped only through it.
+  DistributedSimulation(MPI_Comm comm, Simulation& local);
+
+  /// One step of dt on every process (collective).
+  void step(double dt);
+  /// s, the whole body's critical time step (collective).
+  [[nodiscard]] double critical_timestep() const;
+
+  [[nodiscard]] int rank() const noexcept { return rank_; }
+  [[nodiscard]] int ranks() const noexcept { return ranks_; }
+  [[nodiscard]] const Simulation& local() const noexcept { return local_; }
+  /// Whether slot `slot` of local().particles() is this process's own.
+  [[nodiscard]] bool owns(std::size_t slot) const { return owned_.at(slot) != 0; }
+  [[nodiscard]] const DecompositionStats& stats() const noexcept { return stats_; }
+
+  /// Every owned particle of every process, by id, on `root` (empty on the
+  /// others; collective).
+  [[nodiscard]] std::vector<ParticleRecord> gather_particles(int root = 0) const;
+  /// Bonds by state over the whole body (each pair counted by the owner of
+  /// its first particle; collective).
+  [[nodiscard]] BondCounts bond_counts() const;
+
+ private:
+  /// Decomposes the body anew and moves particles and history (collective).
+  void decompose();
+  /// Sends the owners' motion to the halos (collective).
+  void update_halo();
+  /// The whole body's Verlet test (collective).
+  [[nodiscard]] bool lists_used_up() const;
+
+  MPI_Comm comm_;
+  Simulation& local_;
+  int rank_ = 0, ranks_ = 1;
+  std::vector<std::uint8_t> owned_;  ///< per local slot
+  /// Per rank: the local slots whose motion goes to it after each step, and
+  /// the local slots that take the motion it sends, in the same order.
+  std::vector<std::vector<std::uint32_t>> send_slots_, receive_slots_;
+  bool decomposed_ = false;
+  DecompositionStats stats_;
+};
+
+}  // namespace dfc::dem

@@ -1,0 +1,459 @@
+#include "dfc/dem/distributed_simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <unordered_map>
+
+#include "dfc/common/errors.hpp"
+#include "dfc/dem/bond_state.hpp"
+
+namespace dfc::dem {
+
+namespace {
+
+static_assert(std::is_trivially_copyable_v<ParticleRecord>);
+
+/// Bytes for one destination, appended to and read in order.
+struct Bytes {
+  std::vector<std::byte> data;
+  template <class T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const auto* b = reinterpret_cast<const std::byte*>(&value);
+    data.insert(data.end(), b, b + sizeof(T));
+  }
+  void put_doubles(const double* values, std::size_t n) {
+    const auto* b = reinterpret_cast<const std::byte*>(values);
+    data.insert(data.end(), b, b + n * sizeof(double));
+  }
+};
+
+struct Reader {
+  const std::byte* at;
+  const std::byte* end;
+  template <class T>
+  T get() {
+    T value;
+    std::memcpy(&value, at, sizeof(T));
+    at += sizeof(T);
+    return value;
+  }
+  void get_doubles(double* out, std::size_t n) {
+    std::memcpy(out, at, n * sizeof(double));
+    at += n * sizeof(double);
+  }
+  [[nodiscard]] bool done() const noexcept { return at >= end; }
+};
+
+int as_count(std::size_t n) {
+  if (n > std::size_t(std::numeric_limits<int>::max())) throw SolverError("a decomposed run sent more than 2 GB to one process in one exchange");
+  return int(n);
+}
+
+/// Every process sends out[q] to process q; returns what all sent to this
+/// one, in rank order (MPI_Alltoallv).
+std::vector<std::byte> all_to_all(MPI_Comm comm, const std::vector<Bytes>& out) {
+  const auto ranks = out.size();
+  std::vector<int> send_counts(ranks), send_offsets(ranks), receive_counts(ranks), receive_offsets(ranks);
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < ranks; ++q) {
+    send_counts[q] = as_count(out[q].data.size());
+    send_offsets[q] = as_count(total);
+    total += out[q].data.size();
+  }
+  std::vector<std::byte> send;
+  send.reserve(total);
+  for (const auto& b : out) send.insert(send.end(), b.data.begin(), b.data.end());
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
+  std::size_t received = 0;
+  for (std::size_t q = 0; q < ranks; ++q) {
+    receive_offsets[q] = as_count(received);
+    received += std::size_t(receive_counts[q]);
+  }
+  std::vector<std::byte> in(received);
+  MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, in.data(), receive_counts.data(), receive_offsets.data(),
+                MPI_BYTE, comm);
+  return in;
+}
+
+ParticleRecord record_of(const ParticleStore& p, std::size_t i, int owner) {
+  return {p.id[i], p.position[i], p.velocity[i], p.angular_velocity[i], p.force[i], p.moment[i], p.radius[i], p.mass[i], p.inertia[i], owner,
+          p.material[i]};
+}
+
+/// The motion a step changes and the halo update sends (ParticleStore fields).
+struct Motion {
+  Vec3 position, velocity, angular_velocity, force, moment;
+};
+
+}  // namespace
+
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, Simulation& local) : comm_(comm), local_(local) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &ranks_);
+  if (local_.periodic_cell()) throw UserError("a periodic cell cannot be decomposed over processes yet; run it on one process");
+  send_slots_.resize(std::size_t(ranks_));
+  receive_slots_.resize(std::size_t(ranks_));
+}
+
+double DistributedSimulation::critical_timestep() const {
+  double mine = local_.particles().size() == 0 ? std::numeric_limits<double>::infinity() : local_.critical_timestep();
+  double body = 0.0;
+  MPI_Allreduce(&mine, &body, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  return body;
+}
+
+void DistributedSimulation::step(double dt) {
+  using clock = std::chrono::steady_clock;
+  const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  if (!decomposed_) {
+    const auto t = clock::now();
+    decompose();
+    stats_.decompose_seconds += seconds_since(t);
+  }
+  auto t = clock::now();
+  local_.step(dt);
+  stats_.step_seconds += seconds_since(t);
+  t = clock::now();
+  update_halo();
+  // The step's own Verlet test saw the halo's wrong motion: the whole body's decides.
+  const bool rebuild = lists_used_up();
+  local_.set_lists_stale(false);
+  stats_.halo_seconds += seconds_since(t);
+  if (rebuild) {
+    t = clock::now();
+    decompose();
+    stats_.decompose_seconds += seconds_since(t);
+  }
+}
+
+bool DistributedSimulation::lists_used_up() const {
+  const ParticleStore& p = local_.particles();
+  const auto reference = local_.reference_positions();
+  // The same |x - x_ref|^2 as the integrator's (integrator.cpp): a max is exact in any order.
+  double mine = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (owned_[i]) mine = std::max(mine, norm2(p.position[i] - reference[i]));
+  double body = 0.0;
+  MPI_Allreduce(&mine, &body, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return local_.verlet_skin_used_up(std::sqrt(body));
+}
+
+void DistributedSimulation::update_halo() {
+  const ParticleStore& p = local_.particles();
+  const auto ranks = std::size_t(ranks_);
+  std::vector<std::vector<Motion>> out(ranks), in(ranks);
+  std::vector<MPI_Request> requests;
+  std::size_t sent = 0;
+  for (std::size_t q = 0; q < std::size_t(ranks_); ++q) {
+    if (!receive_slots_[q].empty()) {
+      in[q].resize(receive_slots_[q].size());
+      requests.emplace_back();
+      MPI_Irecv(in[q].data(), as_count(in[q].size() * sizeof(Motion)), MPI_BYTE, int(q), 0, comm_, &requests.back());
+    }
+  }
+  for (std::size_t q = 0; q < std::size_t(ranks_); ++q) {
+    if (send_slots_[q].empty()) continue;
+    for (const std::uint32_t i : send_slots_[q]) out[q].push_back({p.position[i], p.velocity[i], p.angular_velocity[i], p.force[i], p.moment[i]});
+    requests.emplace_back();
+    MPI_Isend(out[q].data(), as_count(out[q].size() * sizeof(Motion)), MPI_BYTE, int(q), 0, comm_, &requests.back());
+    sent += out[q].size() * sizeof(Motion);
+  }
+  MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  stats_.halo_bytes_per_step = sent;
+  ParticleStore& edit = local_.particle_motion_for_edit();
+  for (std::size_t q = 0; q < std::size_t(ranks_); ++q)
+    for (std::size_t k = 0; k < receive_slots_[q].size(); ++k) {
+      const std::uint32_t i = receive_slots_[q][k];
+      const Motion& m = in[q][k];
+      edit.position[i] = m.position;
+      edit.velocity[i] = m.velocity;
+      edit.angular_velocity[i] = m.angular_velocity;
+      edit.force[i] = m.force;
+      edit.moment[i] = m.moment;
+    }
+}
+
+void DistributedSimulation::decompose() {
+  const ParticleStore& p = local_.particles();
+  if (!decomposed_) owned_.assign(p.size(), rank_ == 0 ? 1 : 0);
+
+  // 1. The whole body's extent and largest radius, and the owned positions
+  // of every process for the bisection (the same arrays everywhere).
+  std::vector<double> mine;
+  double r_max = 0.0;
+  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  double hi[3] = {-lo[0], -lo[1], -lo[2]};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!owned_[i]) continue;
+    const Vec3& x = p.position[i];
+    if (!is_finite(x)) throw SolverError("a particle position is not finite; the simulation has become unstable");
+    mine.insert(mine.end(), {x.x, x.y, x.z});
+    r_max = std::max(r_max, p.radius[i]);
+    lo[0] = std::min(lo[0], x.x), lo[1] = std::min(lo[1], x.y), lo[2] = std::min(lo[2], x.z);
+    hi[0] = std::max(hi[0], x.x), hi[1] = std::max(hi[1], x.y), hi[2] = std::max(hi[2], x.z);
+  }
+  double body_r_max = 0.0, body_lo[3], body_hi[3];
+  MPI_Allreduce(&r_max, &body_r_max, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  MPI_Allreduce(lo, body_lo, 3, MPI_DOUBLE, MPI_MIN, comm_);
+  MPI_Allreduce(hi, body_hi, 3, MPI_DOUBLE, MPI_MAX, comm_);
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
+  const int my_count = as_count(mine.size());
+  MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < counts.size(); ++q) {
+    offsets[q] = as_count(total);
+    total += std::size_t(counts[q]);
+  }
+  std::vector<double> all(total);
+  MPI_Allgatherv(mine.data(), my_count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_);
+  std::vector<Vec3> points(total / 3);
+  for (std::size_t k = 0; k < points.size(); ++k) points[k] = {all[3 * k], all[3 * k + 1], all[3 * k + 2]};
+  BodyBounds bounds{{body_lo[0], body_lo[1], body_lo[2]}, {body_hi[0], body_hi[1], body_hi[2]}, points.size()};
+  if (points.empty()) bounds.lo = bounds.hi = Vec3{};  // as the whole body's grid takes an empty body
+  local_.set_body_extent(body_r_max, bounds);
+  // Equal weights: the work of a sphere is about that of any other in a
+  // packing of one coordination number. A pair-count weight is the next step.
+  const std::vector<double> weights(points.size(), 1.0);
+  const RcbDecomposition rcb(points, weights, ranks_);
+  // A candidate of the next rebuild lies within the reach of its partner:
+  // every particle within it of a box is in that box's halo (a relative
+  // margin above the round-off of the distance).
+  const double halo = local_.next_search_reach() * (1.0 + 1e-9);
+
+  // 2. What goes where: each owned particle to its new owner and to every
+  // box whose halo holds it; each history row with an owned particle to the
+  // new owners of its two particles, with the partner of a bond that crosses
+  // (it stays a pair at any distance); each wall row to its particle's owner.
+  const auto ranks = std::size_t(ranks_);
+  std::vector<Bytes> particles_out(ranks), pairs_out(ranks), walls_out(ranks);
+  std::vector<int> new_owner(p.size(), -1);
+  for (std::size_t i = 0; i < p.size(); ++i) new_owner[i] = rcb.owner(p.position[i]);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!owned_[i]) continue;
+    const int dest = new_owner[i];
+    const ParticleRecord r = record_of(p, i, dest);
+    particles_out[std::size_t(dest)].put(r);
+    for (int q = 0; q < ranks_; ++q)
+      if (q != dest && rcb.box(q).distance(p.position[i]) < halo) particles_out[std::size_t(q)].put(r);
+  }
+  const PairContacts& pairs = local_.pair_contacts();
+  const bool bonded = local_.settings().particle_law.bonded();
+  const std::size_t whole_stride = local_.settings().particle_law.history_size();
+  const auto send_row = [&](std::uint32_t a, std::uint32_t b, const double* row) {
+    const int na = new_owner[a], nb = new_owner[b];
+    const auto put = [&](int q) {
+      Bytes& out = pairs_out[std::size_t(q)];
+      out.put(p.id[a]);
+      out.put(p.id[b]);
+      out.put_doubles(row, whole_stride);
+    };
+    put(na);
+    if (nb != na) put(nb);
+    if (bonded && na != nb && row[bond_state_column] != 0.0) {
+      particles_out[std::size_t(na)].put(record_of(p, b, nb));
+      particles_out[std::size_t(nb)].put(record_of(p, a, na));
+    }
+  };
+  if (local_.rebuild_count() == 0) {
+    // Not stepped yet: the rows are those seeded (a generated body), rank 0's sent.
+    if (const auto& seeded = local_.seeded_pair_history(); seeded && whole_stride != 0) {
+      std::unordered_map<std::int64_t, std::uint32_t> slot;
+      for (std::size_t i = 0; i < p.size(); ++i) slot[p.id[i]] = std::uint32_t(i);
+      for (std::size_t k = 0; k < seeded->size(); ++k) {
+        const std::uint32_t a = slot.at(seeded->key(k)[0]), b = slot.at(seeded->key(k)[1]);
+        if (owned_[a] || owned_[b]) send_row(a, b, seeded->row(k));
+      }
+    }
+  } else if (whole_stride != 0) {
+    std::vector<double> whole(whole_stride);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const std::uint32_t a = pairs.first[k], b = pairs.second[k];
+      if (!(owned_[a] || owned_[b]) || pairs.whole_row_is_zero(k)) continue;
+      pairs.copy_whole_row(k, whole.data());
+      send_row(a, b, whole.data());
+    }
+  }
+  const auto& walls = local_.walls();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const WallContacts& wc = local_.wall_contacts(w);
+    for (std::size_t k = 0; k < wc.size(); ++k) {
+      const std::uint32_t i = wc.particle[k];
+      if (!owned_[i] || wc.stride == 0) continue;
+      const double* row = wc.history.data() + k * wc.stride;
+      if (std::all_of(row, row + wc.stride, [](double v) { return v == 0.0; })) continue;
+      Bytes& out = walls_out[std::size_t(new_owner[i])];
+      out.put(std::int64_t(w));
+      out.put(p.id[i]);
+      out.put(std::int64_t(wc.facet[k]));
+      out.put_doubles(row, wc.stride);
+    }
+  }
+  std::vector<std::int64_t> kept_ids;  // owned here before and after: the rest migrated
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (owned_[i] && new_owner[i] == rank_) kept_ids.push_back(p.id[i]);
+
+  // 3. Exchange, and take the particles (each once: all copies are the same
+  // bits) and the rows whose particles are both here.
+  const std::vector<std::byte> particle_bytes = all_to_all(comm_, particles_out);
+  const std::vector<std::byte> pair_bytes = all_to_all(comm_, pairs_out);
+  const std::vector<std::byte> wall_bytes = all_to_all(comm_, walls_out);
+  std::vector<ParticleRecord> records(particle_bytes.size() / sizeof(ParticleRecord));
+  if (!records.empty()) std::memcpy(records.data(), particle_bytes.data(), records.size() * sizeof(ParticleRecord));
+  std::sort(records.begin(), records.end(), [](const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; });
+  records.erase(std::unique(records.begin(), records.end(), [](const ParticleRecord& a, const ParticleRecord& b) { return a.id == b.id; }),
+                records.end());
+  ParticleStore store;
+  std::unordered_map<std::int64_t, int> owner_of;
+  for (const ParticleRecord& r : records) {
+    store.id.push_back(r.id);
+    store.position.push_back(r.position);
+    store.velocity.push_back(r.velocity);
+    store.angular_velocity.push_back(r.angular_velocity);
+    store.force.push_back(r.force);
+    store.moment.push_back(r.moment);
+    store.radius.push_back(r.radius);
+    store.mass.push_back(r.mass);
+    store.inertia.push_back(r.inertia);
+    store.material.push_back(r.material);
+    owner_of[r.id] = r.owner;
+  }
+  HistoryArchive pair_archive(whole_stride);
+  {
+    // A row of a pair whose particles both were owned here comes once, one of
+    // two owners twice (the same bits): keep one, in key order.
+    const std::size_t row_bytes = 2 * sizeof(std::int64_t) + whole_stride * sizeof(double);
+    std::vector<std::pair<HistoryArchive::Key, const std::byte*>> rows;
+    for (const std::byte* at = pair_bytes.data(); at + row_bytes <= pair_bytes.data() + pair_bytes.size(); at += row_bytes) {
+      Reader in{at, at + row_bytes};
+      const auto a = in.get<std::int64_t>(), b = in.get<std::int64_t>();
+      // Apart beyond the reach and no bond: the rebuild drops it (as the whole body's does).
+      if (owner_of.contains(a) && owner_of.contains(b)) rows.push_back({{a, b}, in.at});
+    }
+    std::sort(rows.begin(), rows.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    rows.erase(std::unique(rows.begin(), rows.end(), [](const auto& x, const auto& y) { return x.first == y.first; }), rows.end());
+    pair_archive.reserve(rows.size());
+    std::vector<double> row(whole_stride);
+    for (const auto& [key, at] : rows) {
+      std::memcpy(row.data(), at, row.size() * sizeof(double));
+      pair_archive.add(key, row.data());
+    }
+    pair_archive.seal();
+  }
+  std::vector<HistoryArchive> wall_archives;
+  for (const auto& w : walls) wall_archives.emplace_back(w.law.history_size());
+  {
+    Reader in{wall_bytes.data(), wall_bytes.data() + wall_bytes.size()};
+    std::vector<double> row;
+    while (!in.done()) {
+      const auto w = std::size_t(in.get<std::int64_t>());
+      const auto id = in.get<std::int64_t>(), facet = in.get<std::int64_t>();
+      row.resize(wall_archives.at(w).stride());
+      in.get_doubles(row.data(), row.size());
+      wall_archives[w].add({id, facet}, row.data());
+    }
+    for (auto& a : wall_archives) a.seal();
+  }
+
+  // 4. The new part, its lists, and who sends whose motion after each step.
+  local_.replace_body(std::move(store), std::move(pair_archive), std::move(wall_archives));
+  local_.rebuild_if_stale();
+  const ParticleStore& now = local_.particles();
+  owned_.assign(now.size(), 0);
+  std::vector<Bytes> requests(ranks);
+  for (auto& s : receive_slots_) s.clear();
+  std::size_t owned = 0;
+  for (std::size_t i = 0; i < now.size(); ++i) {
+    const int owner = owner_of.at(now.id[i]);
+    if (owner == rank_) {
+      owned_[i] = 1;
+      ++owned;
+    } else {
+      requests[std::size_t(owner)].put(now.id[i]);
+      receive_slots_[std::size_t(owner)].push_back(std::uint32_t(i));
+    }
+  }
+  const std::vector<std::byte> asked = all_to_all(comm_, requests);
+  // The requests arrive in rank order; each rank's in the order its receive list has them.
+  std::unordered_map<std::int64_t, std::uint32_t> slot_of;
+  for (std::size_t i = 0; i < now.size(); ++i) slot_of[now.id[i]] = std::uint32_t(i);
+  for (auto& s : send_slots_) s.clear();
+  {
+    std::vector<int> request_counts(ranks);
+    std::vector<int> my_counts(ranks);
+    for (std::size_t q = 0; q < ranks; ++q) my_counts[q] = as_count(requests[q].data.size() / sizeof(std::int64_t));
+    MPI_Alltoall(my_counts.data(), 1, MPI_INT, request_counts.data(), 1, MPI_INT, comm_);
+    Reader in{asked.data(), asked.data() + asked.size()};
+    for (std::size_t q = 0; q < ranks; ++q)
+      for (int k = 0; k < request_counts[q]; ++k) {
+        const auto id = in.get<std::int64_t>();
+        const auto found = slot_of.find(id);
+        if (found == slot_of.end() || !owned_[found->second])
+          throw std::logic_error("decomposition: process " + std::to_string(q) + " holds particle " + std::to_string(id) + " as owned here, but it is not");
+        send_slots_[q].push_back(found->second);
+      }
+  }
+  std::size_t kept = 0;
+  {
+    std::sort(kept_ids.begin(), kept_ids.end());
+    for (std::size_t i = 0; i < now.size(); ++i)
+      if (owned_[i] && std::binary_search(kept_ids.begin(), kept_ids.end(), now.id[i])) ++kept;
+  }
+  stats_.owned = owned;
+  stats_.halo = now.size() - owned;
+  stats_.migrated = decomposed_ ? owned - kept : 0;
+  ++stats_.decompositions;
+  decomposed_ = true;
+}
+
+std::vector<ParticleRecord> DistributedSimulation::gather_particles(int root) const {
+  const ParticleStore& p = local_.particles();
+  Bytes mine;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (owned_.empty() ? rank_ == 0 : owned_[i] != 0) mine.put(record_of(p, i, rank_));
+  const int count = as_count(mine.data.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < counts.size(); ++q) {
+    offsets[q] = as_count(total);
+    total += std::size_t(counts[q]);
+  }
+  std::vector<std::byte> all(rank_ == root ? total : 0);
+  MPI_Gatherv(mine.data.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm_);
+  std::vector<ParticleRecord> out(all.size() / sizeof(ParticleRecord));
+  if (!out.empty()) std::memcpy(out.data(), all.data(), all.size());
+  std::sort(out.begin(), out.end(), [](const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; });
+  return out;
+}
+
+BondCounts DistributedSimulation::bond_counts() const {
+  const PairContacts& pairs = local_.pair_contacts();
+  std::int64_t mine[4] = {0, 0, 0, 0}, body[4] = {0, 0, 0, 0};
+  if (local_.settings().particle_law.bonded() && pairs.stride != 0)
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      if (!owned_[pairs.first[k]]) continue;
+      switch (bond_state(pairs.row(k))) {
+        case BondState::intact: ++mine[0]; break;
+        case BondState::damaged: ++mine[1]; break;
+        case BondState::broken_tension: ++mine[2]; break;
+        case BondState::broken_shear: ++mine[3]; break;
+        case BondState::none: break;
+      }
+    }
+  MPI_Allreduce(mine, body, 4, MPI_INT64_T, MPI_SUM, comm_);
+  BondCounts c;
+  c.intact = body[0];
+  c.damaged = body[1];
+  c.broken_tension = body[2];
+  c.broken_shear = body[3];
+  return c;
+}
+
+}  // namespace dfc::dem
