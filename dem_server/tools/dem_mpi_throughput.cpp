@@ -1,7 +1,7 @@
 // dem_mpi_throughput: the real workload's speed on MPI processes
 // (DistributedSimulation, docs/determinism.md §3); bench/mpi_scaling.sh runs it.
 //
-//   mpiexec -n P dem_mpi_throughput --section FILE [--threads T] [--warmup N] [--steps N]
+//   mpiexec -n P dem_mpi_throughput --section FILE [--threads T] [--warmup N] [--steps N] [--rebuild-every N]
 //
 // FILE is a DEM section as dem_server receives it (bench/paper_model.sh and
 // bench/mpi_scaling.sh write them from scenarios/open_pile_chalk.json). Every
@@ -13,6 +13,10 @@
 // decompositions, the load imbalance (max/mean owned particles), the halo
 // (particles held for others, and bytes sent per step, summed over processes),
 // and a digest of the final state gathered by id: the same for any P.
+// --rebuild-every N decomposes the body again before every N-th timed step,
+// as a run whose particles move half the skin every N steps (the paper run
+// rebuilds about every 270 steps, docs/dem_benchmarks.md): a body at rest
+// alone would never show the cost of a decomposition.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -37,6 +41,7 @@ struct Options {
   int threads = 1;
   int warmup = 20;
   int steps = 200;
+  int rebuild_every = 0;
 };
 
 Options parse(int argc, char** argv) {
@@ -44,7 +49,7 @@ Options parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
-      std::cout << "usage: mpiexec -n P dem_mpi_throughput --section FILE [--threads T] [--warmup N] [--steps N]\n"
+      std::cout << "usage: mpiexec -n P dem_mpi_throughput --section FILE [--threads T] [--warmup N] [--steps N] [--rebuild-every N]\n"
                    "The DEM section FILE decomposed over P processes of T threads: particle-steps/s, the halo's and\n"
                    "the decompositions' share of the time, load imbalance, halo size and bytes, and a state digest\n"
                    "(the same for any P and T). bench/mpi_scaling.sh runs it on 1..P processes.\n";
@@ -56,6 +61,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--threads") o.threads = std::stoi(v);
     else if (a == "--warmup") o.warmup = std::stoi(v);
     else if (a == "--steps") o.steps = std::stoi(v);
+    else if (a == "--rebuild-every") o.rebuild_every = std::stoi(v);
     else throw std::runtime_error("unknown option " + a + " (--help)");
   }
   if (o.section.empty()) throw std::runtime_error("--section FILE is required (--help)");
@@ -97,7 +103,10 @@ void run(const Options& o) {
   const DecompositionStats before = body.stats();
   MPI_Barrier(MPI_COMM_WORLD);
   const auto t0 = std::chrono::steady_clock::now();
-  for (int s = 0; s < o.steps; ++s) body.step(model.dt);
+  for (int s = 0; s < o.steps; ++s) {
+    if (o.rebuild_every > 0 && s % o.rebuild_every == 0) body.request_rebuild();
+    body.step(model.dt);
+  }
   MPI_Barrier(MPI_COMM_WORLD);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const DecompositionStats& after = body.stats();

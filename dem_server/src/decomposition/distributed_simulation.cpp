@@ -12,6 +12,7 @@
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/bond_state.hpp"
+#include "dfc/dem/uninitialised_allocator.hpp"
 
 namespace dfc::dem {
 
@@ -19,18 +20,24 @@ namespace {
 
 static_assert(std::is_trivially_copyable_v<ParticleRecord>);
 
-/// Bytes for one destination, appended to and read in order.
+using ByteBuffer = std::vector<std::byte, UninitialisedAllocator<std::byte>>;
+
+/// Bytes for one destination, appended to and read in order. Uninitialised
+/// and kept from one decomposition to the next (DistributedSimulation::Buffers):
+/// a decomposition of the medium body moves ~50 MB of history rows, and
+/// zeroing and first-touching fresh buffers for them took most of its time.
 struct Bytes {
-  std::vector<std::byte> data;
+  ByteBuffer data;
   template <class T>
   void put(const T& value) {
     static_assert(std::is_trivially_copyable_v<T>);
-    const auto* b = reinterpret_cast<const std::byte*>(&value);
-    data.insert(data.end(), b, b + sizeof(T));
+    put_raw(&value, sizeof(T));
   }
-  void put_doubles(const double* values, std::size_t n) {
-    const auto* b = reinterpret_cast<const std::byte*>(values);
-    data.insert(data.end(), b, b + n * sizeof(double));
+  void put_doubles(const double* values, std::size_t n) { put_raw(values, n * sizeof(double)); }
+  void put_raw(const void* bytes, std::size_t n) {
+    const std::size_t at = data.size();
+    data.resize(at + n);
+    std::memcpy(data.data() + at, bytes, n);
   }
 };
 
@@ -56,9 +63,9 @@ int as_count(std::size_t n) {
   return int(n);
 }
 
-/// Every process sends out[q] to process q; returns what all sent to this
-/// one, in rank order (MPI_Alltoallv).
-std::vector<std::byte> all_to_all(MPI_Comm comm, const std::vector<Bytes>& out) {
+/// Every process sends out[q] to process q; `in` receives what all sent to
+/// this one, in rank order (MPI_Alltoallv). `send` is scratch.
+void all_to_all(MPI_Comm comm, const std::vector<Bytes>& out, ByteBuffer& send, ByteBuffer& in) {
   const auto ranks = out.size();
   std::vector<int> send_counts(ranks), send_offsets(ranks), receive_counts(ranks), receive_offsets(ranks);
   std::size_t total = 0;
@@ -67,19 +74,18 @@ std::vector<std::byte> all_to_all(MPI_Comm comm, const std::vector<Bytes>& out) 
     send_offsets[q] = as_count(total);
     total += out[q].data.size();
   }
-  std::vector<std::byte> send;
-  send.reserve(total);
-  for (const auto& b : out) send.insert(send.end(), b.data.begin(), b.data.end());
+  send.resize(total);
+  for (std::size_t q = 0; q < ranks; ++q)
+    if (!out[q].data.empty()) std::memcpy(send.data() + send_offsets[q], out[q].data.data(), out[q].data.size());
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
   std::size_t received = 0;
   for (std::size_t q = 0; q < ranks; ++q) {
     receive_offsets[q] = as_count(received);
     received += std::size_t(receive_counts[q]);
   }
-  std::vector<std::byte> in(received);
+  in.resize(received);
   MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, in.data(), receive_counts.data(), receive_offsets.data(),
                 MPI_BYTE, comm);
-  return in;
 }
 
 ParticleRecord record_of(const ParticleStore& p, std::size_t i, int owner) {
@@ -94,7 +100,22 @@ struct Motion {
 
 }  // namespace
 
-DistributedSimulation::DistributedSimulation(MPI_Comm comm, Simulation& local) : comm_(comm), local_(local) {
+/// The exchange buffers of a decomposition, kept for the next one.
+struct DistributedSimulation::Buffers {
+  std::vector<Bytes> particles, pairs, walls, requests;
+  ByteBuffer send, particle_bytes, pair_bytes, wall_bytes, asked;
+  void reset(std::size_t ranks) {
+    for (auto* list : {&particles, &pairs, &walls, &requests}) {
+      list->resize(ranks);
+      for (auto& b : *list) b.data.clear();
+    }
+  }
+};
+
+DistributedSimulation::~DistributedSimulation() = default;
+
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, Simulation& local)
+    : comm_(comm), local_(local), buffers_(std::make_unique<Buffers>()) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &ranks_);
   if (local_.periodic_cell()) throw UserError("a periodic cell cannot be decomposed over processes yet; run it on one process");
@@ -112,7 +133,8 @@ double DistributedSimulation::critical_timestep() const {
 void DistributedSimulation::step(double dt) {
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
-  if (!decomposed_) {
+  if (!decomposed_ || rebuild_requested_) {
+    rebuild_requested_ = false;
     const auto t = clock::now();
     decompose();
     stats_.decompose_seconds += seconds_since(t);
@@ -232,7 +254,11 @@ void DistributedSimulation::decompose() {
   // new owners of its two particles, with the partner of a bond that crosses
   // (it stays a pair at any distance); each wall row to its particle's owner.
   const auto ranks = std::size_t(ranks_);
-  std::vector<Bytes> particles_out(ranks), pairs_out(ranks), walls_out(ranks);
+  Buffers& buffers = *buffers_;
+  buffers.reset(ranks);
+  std::vector<Bytes>& particles_out = buffers.particles;
+  std::vector<Bytes>& pairs_out = buffers.pairs;
+  std::vector<Bytes>& walls_out = buffers.walls;
   std::vector<int> new_owner(p.size(), -1);
   for (std::size_t i = 0; i < p.size(); ++i) new_owner[i] = rcb.owner(p.position[i]);
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -268,14 +294,17 @@ void DistributedSimulation::decompose() {
       for (std::size_t i = 0; i < p.size(); ++i) slot[p.id[i]] = std::uint32_t(i);
       for (std::size_t k = 0; k < seeded->size(); ++k) {
         const std::uint32_t a = slot.at(seeded->key(k)[0]), b = slot.at(seeded->key(k)[1]);
-        if (owned_[a] || owned_[b]) send_row(a, b, seeded->row(k));
+        if (owned_[a]) send_row(a, b, seeded->row(k));
       }
     }
   } else if (whole_stride != 0) {
+    // A row goes out from the owner of its first particle only: that process
+    // holds every pair of the particle (all its partners are in its halo), so
+    // every row leaves once and arrives at most once.
     std::vector<double> whole(whole_stride);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const std::uint32_t a = pairs.first[k], b = pairs.second[k];
-      if (!(owned_[a] || owned_[b]) || pairs.whole_row_is_zero(k)) continue;
+      if (!owned_[a] || pairs.whole_row_is_zero(k)) continue;
       pairs.copy_whole_row(k, whole.data());
       send_row(a, b, whole.data());
     }
@@ -301,17 +330,28 @@ void DistributedSimulation::decompose() {
 
   // 3. Exchange, and take the particles (each once: all copies are the same
   // bits) and the rows whose particles are both here.
-  const std::vector<std::byte> particle_bytes = all_to_all(comm_, particles_out);
-  const std::vector<std::byte> pair_bytes = all_to_all(comm_, pairs_out);
-  const std::vector<std::byte> wall_bytes = all_to_all(comm_, walls_out);
+  all_to_all(comm_, particles_out, buffers.send, buffers.particle_bytes);
+  all_to_all(comm_, pairs_out, buffers.send, buffers.pair_bytes);
+  all_to_all(comm_, walls_out, buffers.send, buffers.wall_bytes);
+  const ByteBuffer& particle_bytes = buffers.particle_bytes;
+  const ByteBuffer& pair_bytes = buffers.pair_bytes;
+  const ByteBuffer& wall_bytes = buffers.wall_bytes;
   std::vector<ParticleRecord> records(particle_bytes.size() / sizeof(ParticleRecord));
   if (!records.empty()) std::memcpy(records.data(), particle_bytes.data(), records.size() * sizeof(ParticleRecord));
   std::sort(records.begin(), records.end(), [](const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; });
   records.erase(std::unique(records.begin(), records.end(), [](const ParticleRecord& a, const ParticleRecord& b) { return a.id == b.id; }),
                 records.end());
   ParticleStore store;
-  std::unordered_map<std::int64_t, int> owner_of;
+  std::vector<std::int64_t> ids;  // in increasing order (the records'), kept when the store moves on
+  std::vector<int> owners;        // of ids[k]
+  // The owner of a particle here, or -1 if it is not here.
+  const auto owner_of = [&ids, &owners](std::int64_t id) {
+    const auto found = std::lower_bound(ids.begin(), ids.end(), id);
+    return found != ids.end() && *found == id ? owners[std::size_t(found - ids.begin())] : -1;
+  };
   for (const ParticleRecord& r : records) {
+    ids.push_back(r.id);
+    owners.push_back(r.owner);
     store.id.push_back(r.id);
     store.position.push_back(r.position);
     store.velocity.push_back(r.velocity);
@@ -322,30 +362,28 @@ void DistributedSimulation::decompose() {
     store.mass.push_back(r.mass);
     store.inertia.push_back(r.inertia);
     store.material.push_back(r.material);
-    owner_of[r.id] = r.owner;
   }
-  HistoryArchive pair_archive(whole_stride);
+  // The rows whose particles are both here (each arrives once, see above);
+  // the others are of pairs now apart beyond the reach with no bond, which
+  // the rebuild drops as the whole body's does.
+  std::vector<HistoryArchive::Key> keys;
+  std::vector<double> rows;
   {
-    // A row of a pair whose particles both were owned here comes once, one of
-    // two owners twice (the same bits): keep one, in key order.
     const std::size_t row_bytes = 2 * sizeof(std::int64_t) + whole_stride * sizeof(double);
-    std::vector<std::pair<HistoryArchive::Key, const std::byte*>> rows;
-    for (const std::byte* at = pair_bytes.data(); at + row_bytes <= pair_bytes.data() + pair_bytes.size(); at += row_bytes) {
-      Reader in{at, at + row_bytes};
+    const std::size_t count = whole_stride == 0 ? 0 : pair_bytes.size() / row_bytes;
+    keys.reserve(count);
+    rows.reserve(count * whole_stride);
+    for (std::size_t k = 0; k < count; ++k) {
+      Reader in{pair_bytes.data() + k * row_bytes, pair_bytes.data() + (k + 1) * row_bytes};
       const auto a = in.get<std::int64_t>(), b = in.get<std::int64_t>();
-      // Apart beyond the reach and no bond: the rebuild drops it (as the whole body's does).
-      if (owner_of.contains(a) && owner_of.contains(b)) rows.push_back({{a, b}, in.at});
+      if (owner_of(a) < 0 || owner_of(b) < 0) continue;
+      keys.push_back({a, b});
+      const std::size_t at = rows.size();
+      rows.resize(at + whole_stride);
+      in.get_doubles(rows.data() + at, whole_stride);
     }
-    std::sort(rows.begin(), rows.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    rows.erase(std::unique(rows.begin(), rows.end(), [](const auto& x, const auto& y) { return x.first == y.first; }), rows.end());
-    pair_archive.reserve(rows.size());
-    std::vector<double> row(whole_stride);
-    for (const auto& [key, at] : rows) {
-      std::memcpy(row.data(), at, row.size() * sizeof(double));
-      pair_archive.add(key, row.data());
-    }
-    pair_archive.seal();
   }
+  HistoryArchive pair_archive = HistoryArchive::adopt(whole_stride, std::move(keys), std::move(rows));
   std::vector<HistoryArchive> wall_archives;
   for (const auto& w : walls) wall_archives.emplace_back(w.law.history_size());
   {
@@ -366,11 +404,11 @@ void DistributedSimulation::decompose() {
   local_.rebuild_if_stale();
   const ParticleStore& now = local_.particles();
   owned_.assign(now.size(), 0);
-  std::vector<Bytes> requests(ranks);
+  std::vector<Bytes>& requests = buffers.requests;
   for (auto& s : receive_slots_) s.clear();
   std::size_t owned = 0;
   for (std::size_t i = 0; i < now.size(); ++i) {
-    const int owner = owner_of.at(now.id[i]);
+    const int owner = owner_of(now.id[i]);
     if (owner == rank_) {
       owned_[i] = 1;
       ++owned;
@@ -379,10 +417,12 @@ void DistributedSimulation::decompose() {
       receive_slots_[std::size_t(owner)].push_back(std::uint32_t(i));
     }
   }
-  const std::vector<std::byte> asked = all_to_all(comm_, requests);
+  all_to_all(comm_, requests, buffers.send, buffers.asked);
+  const ByteBuffer& asked = buffers.asked;
   // The requests arrive in rank order; each rank's in the order its receive list has them.
-  std::unordered_map<std::int64_t, std::uint32_t> slot_of;
-  for (std::size_t i = 0; i < now.size(); ++i) slot_of[now.id[i]] = std::uint32_t(i);
+  std::vector<std::pair<std::int64_t, std::uint32_t>> slot_of(now.size());
+  for (std::size_t i = 0; i < now.size(); ++i) slot_of[i] = {now.id[i], std::uint32_t(i)};
+  std::sort(slot_of.begin(), slot_of.end());
   for (auto& s : send_slots_) s.clear();
   {
     std::vector<int> request_counts(ranks);
@@ -393,8 +433,8 @@ void DistributedSimulation::decompose() {
     for (std::size_t q = 0; q < ranks; ++q)
       for (int k = 0; k < request_counts[q]; ++k) {
         const auto id = in.get<std::int64_t>();
-        const auto found = slot_of.find(id);
-        if (found == slot_of.end() || !owned_[found->second])
+        const auto found = std::lower_bound(slot_of.begin(), slot_of.end(), std::pair<std::int64_t, std::uint32_t>{id, 0});
+        if (found == slot_of.end() || found->first != id || !owned_[found->second])
           throw std::logic_error("decomposition: process " + std::to_string(q) + " holds particle " + std::to_string(id) + " as owned here, but it is not");
         send_slots_[q].push_back(found->second);
       }
@@ -425,7 +465,7 @@ std::vector<ParticleRecord> DistributedSimulation::gather_particles(int root) co
     offsets[q] = as_count(total);
     total += std::size_t(counts[q]);
   }
-  std::vector<std::byte> all(rank_ == root ? total : 0);
+  ByteBuffer all(rank_ == root ? total : 0);
   MPI_Gatherv(mine.data.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm_);
   std::vector<ParticleRecord> out(all.size() / sizeof(ParticleRecord));
   if (!out.empty()) std::memcpy(out.data(), all.data(), all.size());

@@ -29,6 +29,7 @@
 // cells, monitors and checkpoints.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <mpi.h>
@@ -71,9 +72,15 @@ class DistributedSimulation {
   /// process as on one). Not periodic (UserError). `local` must outlive this
   /// object and is stepped only through it.
   DistributedSimulation(MPI_Comm comm, Simulation& local);
+  ~DistributedSimulation();
+  DistributedSimulation(const DistributedSimulation&) = delete;
+  DistributedSimulation& operator=(const DistributedSimulation&) = delete;
 
   /// One step of dt on every process (collective).
   void step(double dt);
+  /// Decomposes the body again before the next step, as a rebuild due would
+  /// (benchmarks: the cost of a decomposition; call it on every process).
+  void request_rebuild() noexcept { rebuild_requested_ = true; }
   /// s, the whole body's critical time step (collective).
   [[nodiscard]] double critical_timestep() const;
 
@@ -107,6 +114,9 @@ class DistributedSimulation {
   /// the local slots that take the motion it sends, in the same order.
   std::vector<std::vector<std::uint32_t>> send_slots_, receive_slots_;
   bool decomposed_ = false;
+  bool rebuild_requested_ = false;
+  struct Buffers;
+  std::unique_ptr<Buffers> buffers_;  ///< a decomposition's exchange buffers, kept for the next
   DecompositionStats stats_;
 };
 
