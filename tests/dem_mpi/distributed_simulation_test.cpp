@@ -84,8 +84,23 @@ void pulled_bond(Simulation& sim, bool with_particles) {
     if (p.id[i] == 1 || p.id[i] == 2) p.velocity[i] = {p.id[i] == 1 ? -1.0 : 1.0, 0, 0};
 }
 
+/// A wall's loads from the particles: force, moment, force on the particles, then each vertex's force.
+std::vector<Vec3> wall_loads(const Wall& wall) {
+  std::vector<Vec3> loads{wall.force, wall.moment, wall.force_on_particles};
+  loads.insert(loads.end(), wall.vertex_force.begin(), wall.vertex_force.end());
+  return loads;
+}
+
+/// The monitors of an advance that the whole body's measure() gives.
+std::vector<double> monitors(const Measurements& m, const Vec3& momentum) {
+  return {double(m.particle_count), double(m.pair_contact_count), double(m.wall_contact_count), m.coordination_number, m.kinetic_energy,
+          m.total_weight, m.unbalanced_force_ratio, momentum.x, momentum.y, momentum.z};
+}
+
 struct Outcome {
   std::vector<ParticleRecord> particles;  ///< by id (rank 0)
+  std::vector<std::vector<Vec3>> walls;   ///< wall_loads of each wall
+  std::vector<double> monitors;
   BondCounts bonds;
   std::size_t rebuilds = 0, migrated = 0;
 };
@@ -108,7 +123,10 @@ Outcome run_decomposed(const Setup& setup, const ContactLawSetting& law, Vec3 gr
   }
   std::size_t migrated_everywhere = 0;
   MPI_Allreduce(&migrated, &migrated_everywhere, 1, MPI_UNSIGNED_LONG, MPI_SUM, MPI_COMM_WORLD);
-  return {body.gather_particles(0), body.bond_counts(), body.stats().decompositions, migrated_everywhere};
+  std::vector<std::vector<Vec3>> walls;
+  for (const Wall& wall : local.walls()) walls.push_back(wall_loads(wall));
+  return {body.gather_particles(0), walls, monitors(body.measure(), body.momentum()), body.bond_counts(), body.stats().decompositions,
+          migrated_everywhere};
 }
 
 Outcome run_whole(const Setup& setup, const ContactLawSetting& law, Vec3 gravity, int steps, double step_fraction) {
@@ -122,6 +140,8 @@ Outcome run_whole(const Setup& setup, const ContactLawSetting& law, Vec3 gravity
     out.particles.push_back({p.id[i], p.position[i], p.velocity[i], p.angular_velocity[i], p.force[i], p.moment[i], p.radius[i], p.mass[i],
                              p.inertia[i], 0, p.material[i]});
   std::sort(out.particles.begin(), out.particles.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
+  for (const Wall& wall : sim.walls()) out.walls.push_back(wall_loads(wall));
+  out.monitors = monitors(measure(sim), sim.momentum());
   out.bonds = sim.bond_counts();
   out.rebuilds = sim.rebuild_count();
   return out;
@@ -140,7 +160,7 @@ std::size_t fields_that_differ(const Outcome& decomposed, const Outcome& whole) 
   return differ;
 }
 
-TEST(DistributedSimulation, ASqueezedBondedBlockHasTheWholeBodysBitsOnAnyProcessCount) {
+TEST(DistributedSimulation, ASqueezedBondedBlockAndItsWallsHaveTheWholeBodysBitsOnAnyProcessCount) {
   const ContactLawSetting law = weak_pbond();
   constexpr int steps = 3500;
   const Outcome decomposed = run_decomposed(squeezed_block, law, {0, 0, -9810}, steps, 0.3);
@@ -148,8 +168,23 @@ TEST(DistributedSimulation, ASqueezedBondedBlockHasTheWholeBodysBitsOnAnyProcess
   const Outcome whole = run_whole(squeezed_block, law, {0, 0, -9810}, steps, 0.3);
   ASSERT_EQ(decomposed.particles.size(), whole.particles.size());
   EXPECT_EQ(fields_that_differ(decomposed, whole), 0u);
+  // The walls' loads, summed from the contacts of every process in the whole body's order.
+  ASSERT_EQ(decomposed.walls.size(), whole.walls.size());
+  for (std::size_t w = 0; w < whole.walls.size(); ++w) {
+    ASSERT_EQ(decomposed.walls[w].size(), whole.walls[w].size());
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < whole.walls[w].size(); ++k) differ += !same_bits(decomposed.walls[w][k], whole.walls[w][k]);
+    EXPECT_EQ(differ, 0u) << "wall " << w;
+    EXPECT_GT(norm(whole.walls[w][0]), 0.0) << "wall " << w << " carries no load: the check could not fail";
+  }
   EXPECT_EQ(decomposed.bonds.intact, whole.bonds.intact);
   EXPECT_EQ(decomposed.bonds.broken_tension + decomposed.bonds.broken_shear, whole.bonds.broken_tension + whole.bonds.broken_shear);
+  // The monitors (measure and momentum), exact sums over the processes' own parts.
+  ASSERT_EQ(decomposed.monitors.size(), whole.monitors.size());
+  for (std::size_t k = 0; k < whole.monitors.size(); ++k)
+    EXPECT_EQ(std::memcmp(&decomposed.monitors[k], &whole.monitors[k], sizeof(double)), 0)
+        << "monitor " << k << ": " << decomposed.monitors[k] << " against " << whole.monitors[k];
+  EXPECT_GT(whole.monitors[1], 1000.0);  // pair contacts: the counts can differ
   // What makes the check able to fail: rebuilds (each one a decomposition),
   // broken bonds, and (on more than one process) particles that changed owner.
   EXPECT_GT(whole.rebuilds, 3u);

@@ -4,25 +4,31 @@
 
 namespace dfc::dem {
 
-void distribute_wall_forces(Wall& wall, const WallContacts& contacts, const ContactOutputs& out, std::size_t offset) {
+void clear_wall_forces(Wall& wall) {
   std::fill(wall.vertex_force.begin(), wall.vertex_force.end(), Vec3{});
   wall.force = wall.moment = wall.force_on_particles = Vec3{};
-  const bool per_facet = !wall.facet_force.empty();
-  if (per_facet) std::fill(wall.facet_force.begin(), wall.facet_force.end(), Vec3{});
+  std::fill(wall.facet_force.begin(), wall.facet_force.end(), Vec3{});
+}
+
+void add_wall_contact(Wall& wall, std::uint32_t facet, const std::array<double, 3>& weights, const Vec3& on_particle, const Vec3& point,
+                      const Vec3* couple) {
+  if (on_particle == Vec3{} && (couple == nullptr || *couple == Vec3{})) return;
+  const Vec3 on_wall = -on_particle;  // Newton's third law
+  const Facet& f = wall.facets[facet];
+  for (std::size_t v = 0; v < 3; ++v) wall.vertex_force[f[v]] += weights[v] * on_wall;
+  wall.force += on_wall;
+  if (!wall.facet_force.empty()) wall.facet_force[facet] += on_wall;
+  wall.moment += cross(point, on_wall);
+  if (couple != nullptr) wall.moment -= *couple;
+  wall.force_on_particles += on_particle;
+}
+
+void distribute_wall_forces(Wall& wall, const WallContacts& contacts, const ContactOutputs& out, std::size_t offset) {
+  clear_wall_forces(wall);
   const bool with_couple = !out.couple.empty();
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const std::size_t o = offset + k;
-    const Vec3 on_particle = out.force[o];
-    if (on_particle == Vec3{} && (!with_couple || out.couple[o] == Vec3{})) continue;
-    const Vec3 on_wall = -on_particle;  // Newton's third law
-    const Facet& f = wall.facets[contacts.facet[k]];
-    const auto& w = contacts.weights[k];
-    for (std::size_t v = 0; v < 3; ++v) wall.vertex_force[f[v]] += w[v] * on_wall;
-    wall.force += on_wall;
-    if (per_facet) wall.facet_force[contacts.facet[k]] += on_wall;
-    wall.moment += cross(out.point[o], on_wall);
-    if (with_couple) wall.moment -= out.couple[o];
-    wall.force_on_particles += on_particle;
+    add_wall_contact(wall, contacts.facet[k], contacts.weights[k], out.force[o], out.point[o], with_couple ? &out.couple[o] : nullptr);
   }
 }
 

@@ -238,6 +238,7 @@ void Simulation::rebuild() {
   if (cell_) check_cell_width(2.0 * r_max + search);
   const CellGrid grid = cell_ ? build_cell_grid(particles_, 2.0 * r_max + search, *cell_, threads_, order)
                               : build_cell_grid(particles_, 2.0 * r_max + search, threads_, order, body_bounds_ ? &*body_bounds_ : nullptr);
+  cell_size_ = grid.cell_size;
   particles_.permute(order, threads_);
   work_progress::advance();  // each phase of a large body's rebuild may take a while: progress between them
 

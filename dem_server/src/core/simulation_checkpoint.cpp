@@ -204,6 +204,7 @@ struct SimulationLayout {
   int threads_;
   double skin_, r_max_;
   double body_r_max_;                     // not saved: a decomposed run sets it before each rebuild
+  double cell_size_;                      // not saved: read by a decomposed run, which rebuilds at once after a decomposition
   std::optional<BodyBounds> body_bounds_;  // likewise
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;

@@ -7,12 +7,15 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <unordered_map>
 
 #include "dfc/common/errors.hpp"
 #include "dfc/dem/bond_state.hpp"
+#include "dfc/dem/exact_sum.hpp"
 #include "dfc/dem/uninitialised_allocator.hpp"
+#include "dfc/dem/wall_forces.hpp"
 
 namespace dfc::dem {
 
@@ -130,7 +133,7 @@ double DistributedSimulation::critical_timestep() const {
   return body;
 }
 
-void DistributedSimulation::step(double dt) {
+void DistributedSimulation::step(double dt, ContactRecord record) {
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
   if (!decomposed_ || rebuild_requested_) {
@@ -140,10 +143,11 @@ void DistributedSimulation::step(double dt) {
     stats_.decompose_seconds += seconds_since(t);
   }
   auto t = clock::now();
-  local_.step(dt);
+  local_.step(dt, record);
   stats_.step_seconds += seconds_since(t);
   t = clock::now();
   update_halo();
+  update_wall_forces();
   // The step's own Verlet test saw the halo's wrong motion: the whole body's decides.
   const bool rebuild = lists_used_up();
   local_.set_lists_stale(false);
@@ -404,6 +408,15 @@ void DistributedSimulation::decompose() {
   local_.rebuild_if_stale();
   const ParticleStore& now = local_.particles();
   owned_.assign(now.size(), 0);
+  cell_.resize(now.size());
+  {
+    // As the grid sorted them (neighbour_search.cpp, CellGrid::cell_of on open axes).
+    const double h = local_.cell_size();
+    const auto reference = local_.reference_positions();
+    for (std::size_t i = 0; i < now.size(); ++i)
+      cell_[i] = {std::int64_t(std::floor(reference[i].z / h)), std::int64_t(std::floor(reference[i].y / h)),
+                  std::int64_t(std::floor(reference[i].x / h))};
+  }
   std::vector<Bytes>& requests = buffers.requests;
   for (auto& s : receive_slots_) s.clear();
   std::size_t owned = 0;
@@ -452,6 +465,55 @@ void DistributedSimulation::decompose() {
   decomposed_ = true;
 }
 
+namespace {
+/// One wall contact of an owned particle as it travels: its place in the
+/// whole body's contact order (wall, then particle slot: cell and id, then facet) and its terms.
+struct WallTerm {
+  std::uint32_t wall = 0, facet = 0;
+  std::array<std::int64_t, 3> cell{};
+  std::int64_t id = 0;
+  std::array<double, 3> weights{};
+  Vec3 force, point, couple;
+};
+static_assert(std::is_trivially_copyable_v<WallTerm>);
+}  // namespace
+
+void DistributedSimulation::update_wall_forces() {
+  const auto& walls = local_.walls();
+  if (walls.empty()) return;
+  const ParticleStore& p = local_.particles();
+  const ContactOutputs& out = local_.outputs_with_wall_contacts();
+  const bool with_couple = !out.couple.empty();
+  std::vector<WallTerm> mine;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const WallContacts& contacts = local_.wall_contacts(w);
+    const std::size_t offset = local_.wall_output_offset(w);
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      const std::uint32_t i = contacts.particle[k];
+      const std::size_t o = offset + k;
+      // add_wall_contact skips a contact without load: none travels.
+      if (!owned_[i] || (out.force[o] == Vec3{} && (!with_couple || out.couple[o] == Vec3{}))) continue;
+      mine.push_back({std::uint32_t(w), contacts.facet[k], cell_[i], p.id[i], contacts.weights[k], out.force[o], out.point[o],
+                      with_couple ? out.couple[o] : Vec3{}});
+    }
+  }
+  const int count = as_count(mine.size() * sizeof(WallTerm));
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < counts.size(); ++q) {
+    offsets[q] = as_count(total);
+    total += std::size_t(counts[q]);
+  }
+  std::vector<WallTerm> all(total / sizeof(WallTerm));
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, comm_);
+  const auto place = [](const WallTerm& t) { return std::tie(t.wall, t.cell, t.id, t.facet); };
+  std::sort(all.begin(), all.end(), [&](const WallTerm& a, const WallTerm& b) { return place(a) < place(b); });
+  for (std::size_t w = 0; w < walls.size(); ++w) clear_wall_forces(local_.wall_results_for_edit(w));
+  for (const WallTerm& t : all)
+    add_wall_contact(local_.wall_results_for_edit(t.wall), t.facet, t.weights, t.force, t.point, with_couple ? &t.couple : nullptr);
+}
+
 std::vector<ParticleRecord> DistributedSimulation::gather_particles(int root) const {
   const ParticleStore& p = local_.particles();
   Bytes mine;
@@ -471,6 +533,52 @@ std::vector<ParticleRecord> DistributedSimulation::gather_particles(int root) co
   if (!out.empty()) std::memcpy(out.data(), all.data(), all.size());
   std::sort(out.begin(), out.end(), [](const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; });
   return out;
+}
+
+namespace {
+/// The whole body's sum of every process's exact sums (their limbs add, SPEC of exact_sum.hpp).
+template <std::size_t N>
+std::array<ExactSum, N> sum_over_processes(const std::array<ExactSum, N>& mine, MPI_Comm comm) {
+  constexpr std::size_t width = std::tuple_size_v<decltype(ExactSum{}.normalised_limbs())>;
+  std::vector<std::int64_t> limbs(N * width), total(N * width);
+  for (std::size_t k = 0; k < N; ++k) {
+    const auto l = mine[k].normalised_limbs();
+    std::copy(l.begin(), l.end(), limbs.begin() + std::ptrdiff_t(k * width));
+  }
+  MPI_Allreduce(limbs.data(), total.data(), int(limbs.size()), MPI_INT64_T, MPI_SUM, comm);
+  std::array<ExactSum, N> out{};
+  for (std::size_t k = 0; k < N; ++k) {
+    std::array<std::int64_t, width> l{};
+    std::copy_n(total.begin() + std::ptrdiff_t(k * width), width, l.begin());
+    out[k] = ExactSum::from_limbs(l);
+  }
+  return out;
+}
+}  // namespace
+
+Measurements DistributedSimulation::measure() const {
+  MeasureSums sums = measure_sums(local_, owned_);
+  sums.sums = sum_over_processes(sums.sums, comm_);
+  std::int64_t counts[3] = {sums.particles, sums.pair_contacts, sums.wall_contacts}, total[3]{};
+  MPI_Allreduce(counts, total, 3, MPI_INT64_T, MPI_SUM, comm_);
+  int complete = sums.outputs_complete ? 1 : 0, all_complete = 0;
+  MPI_Allreduce(&complete, &all_complete, 1, MPI_INT, MPI_MIN, comm_);
+  sums.particles = total[0];
+  sums.pair_contacts = total[1];
+  sums.wall_contacts = total[2];
+  sums.outputs_complete = all_complete != 0;
+  return measurements_from(sums);
+}
+
+Vec3 DistributedSimulation::momentum() const {
+  const ParticleStore& p = local_.particles();
+  const auto mine = exact_accumulators<3>(p.size(), local_.threads(), [&](std::size_t i) {
+    if (!owned_[i]) return std::array<double, 3>{};
+    const Vec3 m = p.mass[i] * p.velocity[i];
+    return std::array<double, 3>{m.x, m.y, m.z};
+  });
+  const auto body = sum_over_processes(mine, comm_);
+  return {body[0].value(), body[1].value(), body[2].value()};
 }
 
 BondCounts DistributedSimulation::bond_counts() const {

@@ -27,6 +27,7 @@
 // Walls are held by every process and move alike. Not yet decomposed (the
 // next steps, docs/determinism.md): the wall force sums, servos, periodic
 // cells, monitors and checkpoints.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -34,6 +35,7 @@
 
 #include <mpi.h>
 
+#include "dfc/dem/measurements.hpp"
 #include "dfc/dem/rcb_decomposition.hpp"
 #include "dfc/dem/simulation.hpp"
 
@@ -76,8 +78,12 @@ class DistributedSimulation {
   DistributedSimulation(const DistributedSimulation&) = delete;
   DistributedSimulation& operator=(const DistributedSimulation&) = delete;
 
-  /// One step of dt on every process (collective).
-  void step(double dt);
+  /// One step of dt on every process (collective). Afterwards every
+  /// process's walls carry the whole body's forces, moments and vertex
+  /// forces, summed in the whole body's contact order (the same bits);
+  /// `record` as Simulation::step (the pairs' outputs, which no whole-body
+  /// sum reads yet).
+  void step(double dt, ContactRecord record = ContactRecord::complete);
   /// Decomposes the body again before the next step, as a rebuild due would
   /// (benchmarks: the cost of a decomposition; call it on every process).
   void request_rebuild() noexcept { rebuild_requested_ = true; }
@@ -97,6 +103,11 @@ class DistributedSimulation {
   /// Bonds by state over the whole body (each pair counted by the owner of
   /// its first particle; collective).
   [[nodiscard]] BondCounts bond_counts() const;
+  /// measure() of the whole body, to its bits: each process's exact sums
+  /// over its own particles and contacts, added by their limbs (collective).
+  [[nodiscard]] Measurements measure() const;
+  /// N s, Simulation::momentum of the whole body, to its bits (collective).
+  [[nodiscard]] Vec3 momentum() const;
 
  private:
   /// Decomposes the body anew and moves particles and history (collective).
@@ -105,11 +116,17 @@ class DistributedSimulation {
   void update_halo();
   /// The whole body's Verlet test (collective).
   [[nodiscard]] bool lists_used_up() const;
+  /// Gathers the owned particles' wall contacts of every process and sums
+  /// them into every process's walls in the whole body's order (collective).
+  void update_wall_forces();
 
   MPI_Comm comm_;
   Simulation& local_;
   int rank_ = 0, ranks_ = 1;
   std::vector<std::uint8_t> owned_;  ///< per local slot
+  /// Per local slot: the cell (z, y, x) of the lattice its slot is sorted by
+  /// at the last rebuild; with the id, its place in the whole body's slot order.
+  std::vector<std::array<std::int64_t, 3>> cell_;
   /// Per rank: the local slots whose motion goes to it after each step, and
   /// the local slots that take the motion it sends, in the same order.
   std::vector<std::vector<std::uint32_t>> send_slots_, receive_slots_;

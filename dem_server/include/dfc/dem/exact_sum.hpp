@@ -113,13 +113,14 @@ struct ExactVec3Sum {
   [[nodiscard]] Vec3 value() const noexcept { return {x.value(), y.value(), z.value()}; }
 };
 
-/// The exact sums of N quantities over the items i in [0, n): terms(i)
-/// returns their N terms. On `threads` threads, each summing its items into
-/// its own accumulators, merged at the end: exact, so the same bits for any
-/// thread count and (under MPI) any split of the items among processes.
-/// Integers (counts) below 2^53 are summed exactly as doubles too.
+/// The exact sums of N quantities over the items i in [0, n), unrounded:
+/// terms(i) returns their N terms. On `threads` threads, each summing its
+/// items into its own accumulators, merged at the end: exact, so the same
+/// bits for any thread count and (under MPI, merged by their limbs) any split
+/// of the items among processes. Integers (counts) below 2^53 are summed
+/// exactly as doubles too.
 template <std::size_t N, class Terms>
-[[nodiscard]] std::array<double, N> exact_sums(std::size_t n, int threads, const Terms& terms) {
+[[nodiscard]] std::array<ExactSum, N> exact_accumulators(std::size_t n, int threads, const Terms& terms) {
   std::vector<std::array<ExactSum, N>> partial;
   const auto count = std::int64_t(n);
 #pragma omp parallel num_threads(threads) if(count >= min_parallel_items)
@@ -136,6 +137,13 @@ template <std::size_t N, class Terms>
   std::array<ExactSum, N> total{};
   for (const auto& p : partial)
     for (std::size_t k = 0; k < N; ++k) total[k] += p[k];
+  return total;
+}
+
+/// exact_accumulators, each rounded once.
+template <std::size_t N, class Terms>
+[[nodiscard]] std::array<double, N> exact_sums(std::size_t n, int threads, const Terms& terms) {
+  const std::array<ExactSum, N> total = exact_accumulators<N>(n, threads, terms);
   std::array<double, N> values{};
   for (std::size_t k = 0; k < N; ++k) values[k] = total[k].value();
   return values;

@@ -1,7 +1,11 @@
 #pragma once
 // Whole-model measurements of the DEM (monitors of the server).
+#include <array>
 #include <cstddef>
+#include <cstdint>
+#include <span>
 
+#include "dfc/dem/exact_sum.hpp"
 #include "dfc/dem/simulation.hpp"
 
 namespace dfc::dem {
@@ -27,5 +31,20 @@ struct Measurements {
 };
 
 [[nodiscard]] Measurements measure(const Simulation& simulation);
+
+/// What a measurement is summed from, unrounded: the sums of a decomposed
+/// run's processes add up (limbs and counts) to the whole body's, so its
+/// measurement has the whole body's bits (distributed_simulation.hpp).
+struct MeasureSums {
+  /// kinetic energy, weight, |unbalanced force| over the particles; |force| over the contacts
+  std::array<ExactSum, 4> sums{};
+  std::int64_t particles = 0, pair_contacts = 0, wall_contacts = 0;
+  bool outputs_complete = true;
+};
+/// The sums over the particles `owned` marks (by slot; empty: all of them),
+/// the pair contacts of the owned first particles and the wall contacts of
+/// owned particles.
+[[nodiscard]] MeasureSums measure_sums(const Simulation& simulation, std::span<const std::uint8_t> owned = {});
+[[nodiscard]] Measurements measurements_from(const MeasureSums& sums);
 
 }  // namespace dfc::dem

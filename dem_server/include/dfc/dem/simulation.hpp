@@ -167,6 +167,12 @@ class Simulation {
   /// Sets whether the next step rebuilds: a decomposed run replaces each
   /// part's own decision by the whole body's.
   void set_lists_stale(bool stale) noexcept { stale_ = stale; }
+  /// m, the cell size of the last rebuild's grid: the slots are in the order
+  /// of the cells floor(x_ref / size) (x_ref: reference_positions()), then ids.
+  [[nodiscard]] double cell_size() const noexcept { return cell_size_; }
+  /// Wall `w` for its result fields alone (forces, moment: a decomposed run
+  /// puts the whole body's there); geometry and motion must not change.
+  [[nodiscard]] Wall& wall_results_for_edit(std::size_t w) { return walls_.at(w); }
 
   /// Makes the space periodic on cell.periodic's axes (and deformable).
   /// Throws UserError if a periodic edge is shorter than 2 (2 r_max + skin).
@@ -195,6 +201,9 @@ class Simulation {
   /// False only after a step that recorded the gathered outputs alone: in the
   /// middle of a run, or when such a step failed (SolverError).
   [[nodiscard]] bool contact_outputs_complete() const noexcept { return outputs_complete_; }
+  /// The outputs whatever the last step recorded: its wall contacts' entries
+  /// are always written (ContactRecord), the pairs' may be stale.
+  [[nodiscard]] const ContactOutputs& outputs_with_wall_contacts() const noexcept { return outputs_; }
   /// Where wall `wall`'s contacts start in contact_outputs().
   [[nodiscard]] std::size_t wall_output_offset(std::size_t wall) const { return wall_offsets_.at(wall); }
   [[nodiscard]] std::int64_t step_count() const noexcept { return step_; }
@@ -270,6 +279,7 @@ class Simulation {
   double skin_ = 0.0;
   double r_max_ = 0.0;  ///< m, largest radius at the last rebuild
   double body_r_max_ = 0.0;  ///< m, set_body_extent (0: this body's own)
+  double cell_size_ = 0.0;   ///< m, the last rebuild's grid cell size
   std::optional<BodyBounds> body_bounds_;  ///< set_body_extent
   ParticleStore particles_;
   std::unordered_set<std::int64_t> ids_;
