@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -126,6 +127,34 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, Simulation& local)
   receive_slots_.resize(std::size_t(ranks_));
 }
 
+void DistributedSimulation::collectively(const std::function<void()>& work) const {
+  // 0: done; 1: SolverError; 2: UserError; 3: any other exception.
+  int kind = 0;
+  std::string message;
+  try {
+    work();
+  } catch (const SolverError& e) {
+    kind = 1, message = e.what();
+  } catch (const UserError& e) {
+    kind = 2, message = e.what();
+  } catch (const std::exception& e) {
+    kind = 3, message = e.what();
+  }
+  // The lowest process that failed tells the others what (one of them alone
+  // may have seen it: a contact its part holds), and all throw it.
+  int failed_rank = kind != 0 ? rank_ : ranks_, first = ranks_;
+  MPI_Allreduce(&failed_rank, &first, 1, MPI_INT, MPI_MIN, comm_);
+  if (first == ranks_) return;
+  int header[2] = {kind, int(message.size())};
+  MPI_Bcast(header, 2, MPI_INT, first, comm_);
+  message.resize(std::size_t(header[1]));
+  MPI_Bcast(message.data(), header[1], MPI_CHAR, first, comm_);
+  const std::string text = (rank_ == first ? "" : "process " + std::to_string(first) + ": ") + message;
+  if (header[0] == 1) throw SolverError(text);
+  if (header[0] == 2) throw UserError(text);
+  throw std::runtime_error(text);
+}
+
 double DistributedSimulation::critical_timestep() const {
   double mine = local_.particles().size() == 0 ? std::numeric_limits<double>::infinity() : local_.critical_timestep();
   double body = 0.0;
@@ -143,7 +172,7 @@ void DistributedSimulation::step(double dt, ContactRecord record) {
     stats_.decompose_seconds += seconds_since(t);
   }
   auto t = clock::now();
-  local_.step(dt, record);
+  collectively([&] { local_.step(dt, record); });
   stats_.step_seconds += seconds_since(t);
   t = clock::now();
   update_halo();
@@ -213,18 +242,22 @@ void DistributedSimulation::decompose() {
   // 1. The whole body's extent and largest radius, and the owned positions
   // of every process for the bisection (the same arrays everywhere).
   std::vector<double> mine;
+  bool unstable = false;
   double r_max = 0.0;
   double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   double hi[3] = {-lo[0], -lo[1], -lo[2]};
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!owned_[i]) continue;
     const Vec3& x = p.position[i];
-    if (!is_finite(x)) throw SolverError("a particle position is not finite; the simulation has become unstable");
+    if (!is_finite(x)) unstable = true;
     mine.insert(mine.end(), {x.x, x.y, x.z});
     r_max = std::max(r_max, p.radius[i]);
     lo[0] = std::min(lo[0], x.x), lo[1] = std::min(lo[1], x.y), lo[2] = std::min(lo[2], x.z);
     hi[0] = std::max(hi[0], x.x), hi[1] = std::max(hi[1], x.y), hi[2] = std::max(hi[2], x.z);
   }
+  collectively([&] {
+    if (unstable) throw SolverError("a particle position is not finite; the simulation has become unstable");
+  });
   double body_r_max = 0.0, body_lo[3], body_hi[3];
   MPI_Allreduce(&r_max, &body_r_max, 1, MPI_DOUBLE, MPI_MAX, comm_);
   MPI_Allreduce(lo, body_lo, 3, MPI_DOUBLE, MPI_MIN, comm_);
@@ -405,7 +438,7 @@ void DistributedSimulation::decompose() {
 
   // 4. The new part, its lists, and who sends whose motion after each step.
   local_.replace_body(std::move(store), std::move(pair_archive), std::move(wall_archives));
-  local_.rebuild_if_stale();
+  collectively([&] { local_.rebuild_if_stale(); });
   const ParticleStore& now = local_.particles();
   owned_.assign(now.size(), 0);
   cell_.resize(now.size());

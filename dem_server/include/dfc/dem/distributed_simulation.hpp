@@ -30,6 +30,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -78,7 +79,9 @@ class DistributedSimulation {
   DistributedSimulation(const DistributedSimulation&) = delete;
   DistributedSimulation& operator=(const DistributedSimulation&) = delete;
 
-  /// One step of dt on every process (collective). Afterwards every
+  /// One step of dt on every process (collective). An error on any process
+  /// (an unstable step: SolverError) is thrown on every one, with the
+  /// message of the lowest that failed. Afterwards every
   /// process's walls carry the whole body's forces, moments and vertex
   /// forces, summed in the whole body's contact order (the same bits);
   /// `record` as Simulation::step (the pairs' outputs, which no whole-body
@@ -116,6 +119,9 @@ class DistributedSimulation {
   void update_halo();
   /// The whole body's Verlet test (collective).
   [[nodiscard]] bool lists_used_up() const;
+  /// Runs `work` on every process; if it throws on any, throws the same kind
+  /// of error with the lowest failing process's message on all (collective).
+  void collectively(const std::function<void()>& work) const;
   /// Gathers the owned particles' wall contacts of every process and sums
   /// them into every process's walls in the whole body's order (collective).
   void update_wall_forces();
