@@ -35,8 +35,10 @@ lost keeps the resolutions it finished; where DIR has runs of that resolution
 too, the earlier packings are merged with them g-level by g-level (means
 weighted by the packing counts, ranges and bands widened; a packing run again
 replaces the earlier aggregate that held it). So a resolution can be finished
-over several machines, one committed summary at a time. --replace drops
-everything whose runs are not under DIR.
+over several machines, one committed summary at a time. A run the earlier
+summary already holds (recorded per g-level and packing by its wall time and
+DEM steps) is not merged again: the runs folder may be given whole after every
+run. --replace drops everything whose runs are not under DIR.
 
 The inertial number of a run (GDR MiDi 2004; da Cruz et al. 2005) is
 I = gamma_dot d / sqrt(p / rho_s) with the shear rate gamma_dot = v / D_f of
@@ -59,6 +61,7 @@ import math
 import os
 import shutil
 import subprocess
+import tempfile
 import sys
 import time
 
@@ -260,6 +263,8 @@ def merge_level(earlier, fresh):
         a, b = earlier.get(key), fresh.get(key)
         if key == "packings":
             merged[key] = sorted(set(a or []) | set(b or []))
+        elif key == "runs":
+            merged[key] = {**(a or {}), **(b or {})}
         elif key == "inertial_number":
             parts = [x for x in (a, b) if x]
             merged[key] = {k: max(x[k] for x in parts) for k in ("median", "max")} if parts else {}
@@ -268,6 +273,32 @@ def merge_level(earlier, fresh):
         else:
             merged[key] = b if b is not None else a
     return merged
+
+
+def run_fingerprint(run):
+    """What tells one run from another of the same variant: its wall time and
+    DEM steps to the last digit (a run made again differs at least in its wall time)."""
+    return f"{float(run.summary.get('wall_time_s', float('nan'))):.17g}/{float(run.summary.get('dem_steps', float('nan'))):.17g}"
+
+
+def already_summarised(runs, earlier):
+    """The runs an earlier summary's entry of their resolution holds already (the
+    same packing and g-level, the same fingerprint): summarised again, each would
+    replace the whole group that holds it and drop that group's other packings."""
+    levels = (earlier or {}).get("g_levels", {})
+    return [r for r in runs if levels.get(f"{r.g_level:g}", {}).get("runs", {}).get(str(r.seed)) == run_fingerprint(r)]
+
+
+def linked_subset(folder, runs, into):
+    """A folder `into` of links to the given runs of `folder` (their results
+    folders, scenario and log files): what centrifuge_foundation.py summarises."""
+    os.makedirs(into, exist_ok=True)
+    for run in runs:
+        label = run.label  # the run's folder: <folder>/<label>/results.h5
+        for name in (label, label + ".json", label + ".log"):
+            if os.path.exists(os.path.join(folder, name)):
+                os.symlink(os.path.abspath(os.path.join(folder, name)), os.path.join(into, name))
+    return into
 
 
 def merge_resolution(earlier, fresh, scale):
@@ -316,6 +347,8 @@ def command_summary(args):
         print(f"resolution_study.py: no such folder '{args.runs}'", file=sys.stderr)
         return 2
     resolutions = {}
+    earlier = {} if args.replace else earlier_resolutions(args.out)
+    scratch = tempfile.TemporaryDirectory()
     for name in sorted(os.listdir(args.runs)):
         folder = os.path.join(args.runs, name)
         if not os.path.isdir(folder):
@@ -323,6 +356,16 @@ def command_summary(args):
         runs = load_runs(folder)
         if not runs:
             continue
+        # Runs a committed summary already holds are not summarised again (each
+        # would replace its whole group): the rest are, from a folder of links.
+        known = already_summarised(runs, earlier.get(runs[0].scale))
+        if known:
+            print(f"S = {runs[0].scale:g}: {', '.join(r.label for r in known)} "
+                  f"already in {args.out}/resolution_summary.json: not merged again")
+            runs = [r for r in runs if r not in known]
+            if not runs:
+                continue
+            folder = linked_subset(folder, runs, os.path.join(scratch.name, name))
         if subprocess.run([sys.executable, os.path.join(TOOLS, "centrifuge_foundation.py"), folder]).returncode != 0:
             print(f"resolution_study.py: centrifuge_foundation.py failed on {folder}", file=sys.stderr)
             return 1
@@ -339,6 +382,8 @@ def command_summary(args):
             level = dict(study["g_levels"][f"{g:g}"])
             numbers = np.concatenate([inertial_numbers(r, r.grain_density) for r in members])
             level["inertial_number"] = {"median": float(np.median(numbers)), "max": float(np.max(numbers))} if len(numbers) else {}
+            # The runs the level holds, by packing (summarise_once).
+            level["runs"] = {str(r.seed): run_fingerprint(r) for r in members}
             entry["g_levels"][f"{g:g}"] = level
             grid = np.linspace(0.0, 1.15, 231) * members[0].diameter
             mean, low, high = cf.band(members, grid, lambda r: r.force)
@@ -346,7 +391,7 @@ def command_summary(args):
                                          "min_n": low.tolist(), "max_n": high.tolist(), "packings": len(members)}
         resolutions[scale] = entry
     if not args.replace:
-        for scale, entry in earlier_resolutions(args.out).items():
+        for scale, entry in earlier.items():
             if scale not in resolutions:
                 print(f"S = {scale:g}: kept from {args.out}/resolution_summary.json (its runs are not under {args.runs})")
                 resolutions[scale] = entry

@@ -17,6 +17,7 @@ import os
 import stat
 import sys
 import tempfile
+import types
 import unittest
 
 from dfc_test_support import require_modules
@@ -147,6 +148,19 @@ class MergedResolutions(unittest.TestCase):
         merged = resolution_study.merge_resolution(earlier, fresh, 2.0)
         self.assertEqual(merged["g_levels"]["1"], fresh["g_levels"]["1"])
         self.assertEqual(merged["particles"]["n"], 2)
+
+    def test_a_run_already_summarised_is_recognised_and_not_merged_again(self):
+        # A summary committed with g100_p2 in it, and the runs folder given whole
+        # again: that run would replace the group of packings 1 and 2 it belongs to.
+        run = types.SimpleNamespace(g_level=100.0, seed=2, summary={"wall_time_s": 3336.343885049, "dem_steps": 1810000}, path="/r/g100_p2/results.h5", label="g100_p2")
+        again = types.SimpleNamespace(g_level=100.0, seed=2, summary={"wall_time_s": 3401.5, "dem_steps": 1810000}, path="/r/g100_p2/results.h5", label="g100_p2")
+        other_g = types.SimpleNamespace(g_level=10.0, seed=2, summary=run.summary, path="/r/g10_p2/results.h5", label="g10_p2")
+        earlier = {"g_levels": {"100": {"packings": [1, 2], "runs": {"1": "elsewhere", "2": resolution_study.run_fingerprint(run)}}}}
+        self.assertEqual(resolution_study.already_summarised([run, again, other_g], earlier), [run])
+        self.assertEqual(resolution_study.already_summarised([run], None), [])
+        # Merged groups keep the runs of both parts.
+        merged = resolution_study.merge_level({"packings": [1], "runs": {"1": "a"}}, {"packings": [2], "runs": {"2": "b"}})
+        self.assertEqual(merged["runs"], {"1": "a", "2": "b"})
 
     def test_a_missing_point_of_one_band_is_the_others(self):
         a = {"h_over_d": [0.0, 1.0], "packings": 1, "mean_n": [1.0, float("nan")], "min_n": [1.0, float("nan")], "max_n": [1.0, float("nan")]}
