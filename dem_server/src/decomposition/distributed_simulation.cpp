@@ -24,6 +24,10 @@ namespace {
 
 static_assert(std::is_trivially_copyable_v<ParticleRecord>);
 
+/// The most particles a box may hold, over the mean, before the boxes are cut
+/// anew: 5 %, a small loss against the cost of gathering every position.
+constexpr double rebalance_tolerance = 0.05;
+
 using ByteBuffer = std::vector<std::byte, UninitialisedAllocator<std::byte>>;
 
 /// Bytes for one destination, appended to and read in order. Uninitialised
@@ -262,25 +266,43 @@ void DistributedSimulation::decompose() {
   MPI_Allreduce(&r_max, &body_r_max, 1, MPI_DOUBLE, MPI_MAX, comm_);
   MPI_Allreduce(lo, body_lo, 3, MPI_DOUBLE, MPI_MIN, comm_);
   MPI_Allreduce(hi, body_hi, 3, MPI_DOUBLE, MPI_MAX, comm_);
-  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
-  const int my_count = as_count(mine.size());
-  MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-  std::size_t total = 0;
-  for (std::size_t q = 0; q < counts.size(); ++q) {
-    offsets[q] = as_count(total);
-    total += std::size_t(counts[q]);
-  }
-  std::vector<double> all(total);
-  MPI_Allgatherv(mine.data(), my_count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_);
-  std::vector<Vec3> points(total / 3);
-  for (std::size_t k = 0; k < points.size(); ++k) points[k] = {all[3 * k], all[3 * k + 1], all[3 * k + 2]};
-  BodyBounds bounds{{body_lo[0], body_lo[1], body_lo[2]}, {body_hi[0], body_hi[1], body_hi[2]}, points.size()};
-  if (points.empty()) bounds.lo = bounds.hi = Vec3{};  // as the whole body's grid takes an empty body
+  std::int64_t owned_here = std::int64_t(mine.size() / 3), body_count = 0;
+  MPI_Allreduce(&owned_here, &body_count, 1, MPI_INT64_T, MPI_SUM, comm_);
+  BodyBounds bounds{{body_lo[0], body_lo[1], body_lo[2]}, {body_hi[0], body_hi[1], body_hi[2]}, std::size_t(body_count)};
+  if (body_count == 0) bounds.lo = bounds.hi = Vec3{};  // as the whole body's grid takes an empty body
   local_.set_body_extent(body_r_max, bounds);
-  // Equal weights: the work of a sphere is about that of any other in a
-  // packing of one coordination number. A pair-count weight is the next step.
-  const std::vector<double> weights(points.size(), 1.0);
-  const RcbDecomposition rcb(points, weights, ranks_);
+  // The boxes: the last decomposition's while they still hold about the same
+  // number of particles each (the cuts are then not gathered and computed
+  // again: a serial share that grows with the body), new ones where the load
+  // has drifted by more than rebalance_tolerance.
+  bool recut = !rcb_;
+  if (rcb_) {
+    std::vector<std::int64_t> load(std::size_t(ranks_), 0), body_load(std::size_t(ranks_), 0);
+    for (std::size_t k = 0; k < mine.size() / 3; ++k) ++load[std::size_t(rcb_->owner({mine[3 * k], mine[3 * k + 1], mine[3 * k + 2]}))];
+    MPI_Allreduce(load.data(), body_load.data(), ranks_, MPI_INT64_T, MPI_SUM, comm_);
+    const double most = double(*std::max_element(body_load.begin(), body_load.end()));
+    recut = most > (1.0 + rebalance_tolerance) * double(body_count) / double(ranks_);
+  }
+  if (recut) {
+    std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
+    const int my_count = as_count(mine.size());
+    MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+    std::size_t total = 0;
+    for (std::size_t q = 0; q < counts.size(); ++q) {
+      offsets[q] = as_count(total);
+      total += std::size_t(counts[q]);
+    }
+    std::vector<double> all(total);
+    MPI_Allgatherv(mine.data(), my_count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_);
+    std::vector<Vec3> points(total / 3);
+    for (std::size_t k = 0; k < points.size(); ++k) points[k] = {all[3 * k], all[3 * k + 1], all[3 * k + 2]};
+    // Equal weights: the work of a sphere is about that of any other in a
+    // packing of one coordination number.
+    const std::vector<double> weights(points.size(), 1.0);
+    rcb_.emplace(points, weights, ranks_);
+    ++stats_.recuts;
+  }
+  const RcbDecomposition& rcb = *rcb_;
   // A candidate of the next rebuild lies within the reach of its partner:
   // every particle within it of a box is in that box's halo (a relative
   // margin above the round-off of the distance).

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <mpi.h>
@@ -55,6 +56,7 @@ struct ParticleRecord {
 /// What the last decomposition and the steps since moved (benchmarks, tests).
 struct DecompositionStats {
   std::size_t decompositions = 0;
+  std::size_t recuts = 0;           ///< decompositions that cut the boxes anew (the others kept the last cuts: the load had not drifted)
   std::size_t owned = 0;            ///< particles this process owns
   std::size_t halo = 0;             ///< particles it holds for others
   std::size_t migrated = 0;         ///< owned particles that came from another process at the last decomposition
@@ -138,6 +140,7 @@ class DistributedSimulation {
   std::vector<std::vector<std::uint32_t>> send_slots_, receive_slots_;
   bool decomposed_ = false;
   bool rebuild_requested_ = false;
+  std::optional<RcbDecomposition> rcb_;  ///< the boxes of the last decomposition
   struct Buffers;
   std::unique_ptr<Buffers> buffers_;  ///< a decomposition's exchange buffers, kept for the next
   DecompositionStats stats_;
