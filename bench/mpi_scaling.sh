@@ -109,6 +109,7 @@ for model in $MODELS; do
     per=$(echo "$l" | field '\(([0-9.eE+-]+) per owned\).*')
     awk -v one="${rate[1 1]}" -v r="${rate[$last 1]}" -v m="$last" -v h="$per" 'BEGIN{
       S = r / one; a = (1 + h) / m; s = (1 / S - a) / (1 - a); if (s < 0) s = 0;
+      if (s > 1) { s = 1; print "  (no speed-up at all: was the machine busy with other work? the projection means nothing)" }
       printf "projection (serial share s = %.4f from %d processes, halo %.3f per owned there):\n", s, m, h;
       n = split("16 64 256", P, " ");
       for (k = 1; k <= n; ++k) { hp = h * (P[k] / m) ^ (1 / 3); sp = 1 / (s + (1 - s) * (1 + hp) / P[k]);
