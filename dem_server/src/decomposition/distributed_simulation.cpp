@@ -243,8 +243,9 @@ void DistributedSimulation::decompose() {
   const ParticleStore& p = local_.particles();
   if (!decomposed_) owned_.assign(p.size(), rank_ == 0 ? 1 : 0);
 
-  // 1. The whole body's extent and largest radius, and the owned positions
-  // of every process for the bisection (the same arrays everywhere).
+  // 1. The whole body's extent and largest radius (reductions), and the
+  // boxes: kept, or cut anew from every process's owned positions (gathered:
+  // the same arrays everywhere, so the same cuts).
   std::vector<double> mine;
   bool unstable = false;
   double r_max = 0.0;
