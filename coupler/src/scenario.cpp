@@ -53,6 +53,34 @@ std::optional<fs::path> resolve_program(const std::string& program, const fs::pa
   return std::nullopt;
 }
 
+/// participants.<slot>.mpi_ranks and mpi_launcher: a DEM on N > 1 processes
+/// is started as `launcher... -n N dem_server --mpi args...` (docs/determinism.md §3).
+void read_mpi_launch(ConfigReader& reader, ParticipantSpec& spec, const fs::path& scenario_dir, const fs::path& bin_dir) {
+  const std::int64_t ranks = reader.integer("mpi_ranks");
+  if (ranks == 1) {
+    if (reader.has("mpi_launcher")) (void)reader.strings("mpi_launcher");  // read, so that it is not refused as unknown; nothing to launch
+    return;
+  }
+  if (spec.slot != "dem")
+    reader.fail("mpi_ranks", "only the DEM (dem_server) runs on many processes; remove mpi_ranks from participants." + spec.slot);
+  if (!spec.endpoint.empty())
+    reader.fail("mpi_ranks", "a server the coupler connects to (endpoint) was started by hand: start it as 'mpiexec -n " + std::to_string(ranks) +
+                                 " dem_server --mpi' and remove mpi_ranks here");
+  std::vector<std::string> launcher = reader.has("mpi_launcher") ? reader.strings("mpi_launcher") : std::vector<std::string>{"mpiexec", "--oversubscribe"};
+  if (launcher.empty() || launcher.front().empty()) reader.fail("mpi_launcher", "name the launcher, e.g. [\"mpiexec\"] or [\"srun\"]");
+  const auto resolved = resolve_program(launcher.front(), scenario_dir, bin_dir);
+  if (!resolved)
+    reader.fail(reader.has("mpi_launcher") ? "mpi_launcher" : "mpi_ranks",
+                "no MPI launcher '" + launcher.front() + "' found on PATH; install OpenMPI (Debian: openmpi-bin libopenmpi-dev, which ./vc installs) "
+                "and build again, or name your MPI's launcher in mpi_launcher");
+  std::vector<std::string> args(launcher.begin() + 1, launcher.end());
+  args.insert(args.end(), {"-n", std::to_string(ranks), spec.executable.string(), "--mpi"});
+  args.insert(args.end(), spec.args.begin(), spec.args.end());
+  spec.args = std::move(args);
+  spec.executable = *resolved;
+  spec.mpi_ranks = ranks;
+}
+
 ParticipantSpec read_participant(ConfigReader reader, const std::string& slot, const fs::path& scenario_dir, const fs::path& bin_dir,
                                  const std::array<double, 3>& gravity) {
   ParticipantSpec spec;
@@ -78,6 +106,7 @@ ParticipantSpec read_participant(ConfigReader reader, const std::string& slot, c
     reader.fail("key_file", "the coupler makes the keys of the servers it starts (program) itself, one per run; key_file names the key of a "
                             "server started by hand (endpoint): remove it here");
   if (reader.has("args")) spec.args = reader.strings("args");
+  read_mpi_launch(reader, spec, scenario_dir, bin_dir);
   const nlohmann::json& config = reader.raw("config");
   if (!config.is_object()) reader.fail("config", "expected an object: the section this server is configured with");
   spec.config = config;

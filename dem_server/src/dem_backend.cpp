@@ -79,7 +79,61 @@ void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, const St
               << " % off the geostatic state asked for (more than 5 %); the achieved K0 per slice is the snapshot's profile_k0" << std::endl;
 }
 
+/// The particle arrays every snapshot holds (SPEC.md §6.4), in the order of
+/// `p`, and each particle's zone where the body is graded.
+void append_particle_arrays(const ParticleStore& p, bool graded, std::vector<protocol::Array>& arrays) {
+  const auto n = std::int64_t(p.size());
+  arrays.push_back(protocol::Array::from_f64("particle_position", {n, 3}, flatten(p.position)));
+  arrays.push_back(protocol::Array::from_f64("particle_radius", {n}, p.radius));
+  arrays.push_back(protocol::Array::from_f64("particle_velocity", {n, 3}, flatten(p.velocity)));
+  arrays.push_back(protocol::Array::from_i64("particle_id", {n}, p.id));
+  if (graded) {  // graded bodies only: the zone (material) of each particle
+    const std::vector<std::int64_t> material(p.material.begin(), p.material.end());
+    arrays.push_back(protocol::Array::from_i64("particle_material", {n}, material));
+  }
+}
+
+/// The walls' triangles (none without walls).
+void append_wall_arrays(const std::vector<Wall>& walls, std::vector<protocol::Array>& arrays) {
+  if (walls.empty()) return;
+  std::vector<Vec3> vertices;
+  std::vector<std::int64_t> facets, facet_wall;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const Wall& wall = walls[w];
+    const auto offset = std::int64_t(vertices.size());
+    vertices.insert(vertices.end(), wall.vertices.begin(), wall.vertices.end());
+    for (const auto& f : wall.facets) {
+      for (const auto v : f) facets.push_back(offset + std::int64_t(v));
+      facet_wall.push_back(std::int64_t(w));
+    }
+  }
+  arrays.push_back(protocol::Array::from_f64("wall_vertices", {std::int64_t(vertices.size()), 3}, flatten(vertices)));
+  arrays.push_back(protocol::Array::from_i64("wall_facets", {std::int64_t(facets.size() / 3), 3}, facets));
+  // Which wall each facet is (its index in the DEM's wall list, the order of
+  // the wall_<name> monitors): ParaView thresholds on it to show the pile alone.
+  arrays.push_back(protocol::Array::from_i64("wall_facet_wall", {std::int64_t(facet_wall.size())}, facet_wall));
+}
+
+/// The local-damping forces of the last step over the slots `engine` owns,
+/// added exactly to `sums` (an advance's total: the same bits for any
+/// process or thread count).
+void add_damping_forces(const DemEngine& engine, std::array<ExactSum, 3>& sums) {
+  const Simulation& s = engine.part();
+  const std::span<const Vec3> damping = s.damping_forces();
+  if (damping.empty()) return;
+  const auto owned = engine.owned();
+  const auto step = exact_accumulators<3>(damping.size(), s.threads(), [&](std::size_t i) {
+    if (!owned.empty() && owned[i] == 0) return std::array<double, 3>{};
+    return std::array<double, 3>{damping[i].x, damping[i].y, damping[i].z};
+  });
+  for (std::size_t k = 0; k < 3; ++k) sums[k] += step[k];
+}
+
 }  // namespace
+
+DemBackend::DemBackend(std::function<std::unique_ptr<DemEngine>(Simulation&)> make_engine, int processes, int rank)
+    : make_engine_(std::move(make_engine)), processes_(processes), rank_(rank) {}
+
 
 protocol::SolverIdentity DemBackend::identity() const {
   return {"dem_server", std::string(project_version()), "dem",
@@ -89,6 +143,7 @@ protocol::SolverIdentity DemBackend::identity() const {
 nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   DemConfig config = parse_dem_config(section);
   DemModel model = build_model(config);
+  engine_.reset();  // it refers to the model replaced now
   config_ = std::move(config);
   model_ = std::move(model);
   interface_wall_.reset();
@@ -144,6 +199,14 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
     info["preparation"] = p;
   }
   info[protocol::monitor_units_key] = monitor_units();
+  if (processes_ > 1) {
+    info["processes"] = processes_;
+    // Checkpoints of a body on many processes are not written yet (docs/determinism.md §4): the capability is withdrawn.
+    info["capabilities"] = {protocol::capability::accepts_interface, protocol::capability::snapshot};
+    if (rank_ == 0) std::cerr << "dem_server: on " << processes_ << " processes a snapshot holds the particles (by id) and the walls; "
+                                 << "particle_stress, bonds, contacts and the stress profile are written on one process only, "
+                                 << "and no checkpoint is written (docs/determinism.md §4)" << std::endl;
+  }
   nlohmann::json progress = nlohmann::json::array();
   for (const auto& protocol : model_.loading) protocol->progress_monitors(progress);
   if (!progress.empty()) info[protocol::progress_monitors_key] = protocol::to_json(protocol::parse_progress_monitors({{protocol::progress_monitors_key, progress}}));
@@ -174,6 +237,12 @@ nlohmann::json DemBackend::monitor_units() const {
 Simulation& DemBackend::sim() {
   if (!model_.simulation) throw protocol::ProtocolError(protocol::ErrorCode::out_of_order, "the DEM is not configured yet; send configure first");
   return *model_.simulation;
+}
+
+DemEngine& DemBackend::engine() {
+  Simulation& s = sim();
+  if (!engine_) engine_ = make_engine_(s);
+  return *engine_;
 }
 
 const Simulation& DemBackend::simulation() const {
@@ -221,6 +290,9 @@ void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
     std::cerr << "dem_server: pcrm coupling wall: " << generation_removed_by_interface_ << " spheres it cut removed, " << seated
               << " seated on it; " << s.particles().size() << " spheres in the model" << std::endl;
   }
+  if (engine_ && processes_ > 1 && s.step_count() > 0)
+    throw ProtocolError(ErrorCode::unsupported, "set_interface after the first advance is not supported on more than one process");
+  engine_.reset();  // made again at the next advance, from the body the coupling wall has trimmed
   if (interface_wall_) s.replace_wall(*interface_wall_, std::move(wall));
   else interface_wall_ = s.add_wall(std::move(wall));
 }
@@ -228,10 +300,11 @@ void DemBackend::set_interface(const protocol::InterfaceMesh& mesh) {
 protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& request) {
   using protocol::ErrorCode;
   using protocol::ProtocolError;
-  Simulation& s = sim();
+  DemEngine& e = engine();
+  Simulation& s = e.part();
 
   // 1. Refuse an unstable step before anything changes (SPEC.md §5.2: the reply carries the largest stable one).
-  const double limit = s.critical_timestep();
+  const double limit = e.critical_timestep();
   if (request.dt > limit) {
     std::ostringstream msg;
     msg << "dt = " << request.dt << " s exceeds the critical time step of the DEM; the largest stable step is " << limit << " s";
@@ -258,18 +331,19 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
   const auto& walls = s.walls();
   std::vector<Vec3> node_force_sum(interface_wall_ ? walls[*interface_wall_].vertex_count() : 0);
   std::vector<Vec3> wall_force_sum(walls.size()), wall_moment_sum(walls.size());
-  Vec3 reaction_sum, damping_sum;
-  for (const auto& protocol : model_.loading) protocol->before_advance(s, request.n_steps);
+  Vec3 reaction_sum;
+  std::array<ExactSum, 3> damping_sums{};
+  for (const auto& protocol : model_.loading) protocol->before_advance(e, request.n_steps);
   for (std::int64_t step = 0; step < request.n_steps; ++step) {
-    for (const auto& protocol : model_.loading) protocol->before_step(s);
+    for (const auto& protocol : model_.loading) protocol->before_step(e);
     if (stepper_) {
-      stepper_->step(s, request.dt);
+      stepper_->step(e, request.dt);
     } else {
       // Only the last step's contact outputs are read (results, measurements).
-      s.step(request.dt, step + 1 < request.n_steps ? ContactRecord::gathered_only : ContactRecord::complete);
+      e.step(request.dt, step + 1 < request.n_steps ? ContactRecord::gathered_only : ContactRecord::complete);
     }
-    for (const auto& protocol : model_.loading) protocol->after_step(s);
-    damping_sum += s.damping_force_total();
+    for (const auto& protocol : model_.loading) protocol->after_step(e);
+    add_damping_forces(e, damping_sums);
     for (std::size_t w = 0; w < walls.size(); ++w) {
       wall_force_sum[w] += walls[w].force;
       wall_moment_sum[w] += walls[w].moment;
@@ -280,7 +354,9 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
       reaction_sum += wall.force_on_particles;
     }
   }
-  for (const auto& protocol : model_.loading) protocol->end_advance(s);
+  for (const auto& protocol : model_.loading) protocol->end_advance(e);
+  e.sum_over_processes(damping_sums);
+  const Vec3 damping_sum{damping_sums[0].value(), damping_sums[1].value(), damping_sums[2].value()};
   const double inv_n = 1.0 / double(request.n_steps);
 
   // 4. Averages (impulse / duration) and outputs.
@@ -291,7 +367,7 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
     averages_["wall_" + walls[w].name + "_force_n"] = to_json(inv_n * wall_force_sum[w]);
     averages_["wall_" + walls[w].name + "_moment_nm"] = to_json(inv_n * wall_moment_sum[w]);
   }
-  for (const auto& protocol : model_.loading) protocol->averages(s, {wall_force_sum, inv_n}, averages_);
+  for (const auto& protocol : model_.loading) protocol->averages(e, {wall_force_sum, inv_n}, averages_);
   averages_["damping_force_n"] = to_json(inv_n * damping_sum);  // 0 when undamped: the column stays when a stage turns damping off
   if (interface_wall_) {
     double power = 0.0;
@@ -309,8 +385,9 @@ protocol::AdvanceResult DemBackend::advance(const protocol::AdvanceRequest& requ
 }
 
 nlohmann::json DemBackend::monitors() {
-  const Simulation& s = sim();
-  const Measurements m = measure(s);
+  const DemEngine& e = engine();
+  const Simulation& s = e.part();
+  const Measurements m = e.measure();
   nlohmann::json out = averages_;
   out["unbalanced_force_ratio"] = m.unbalanced_force_ratio;
   out["kinetic_energy_j"] = m.kinetic_energy;
@@ -318,64 +395,49 @@ nlohmann::json DemBackend::monitors() {
   out["contact_count"] = m.contact_count();
   out["coordination_number"] = m.coordination_number;
   out["total_weight_n"] = m.total_weight;
-  out["particle_momentum_n_s"] = to_json(s.momentum());
-  out["dt_critical_s"] = s.critical_timestep();
+  out["particle_momentum_n_s"] = to_json(e.momentum());
+  out["dt_critical_s"] = e.critical_timestep();
   if (s.settings().particle_law.bonded()) {  // new monitors for bonded laws only: unbonded runs keep their exact set
-    const BondCounts bonds = s.bond_counts();
+    const BondCounts bonds = e.bond_counts();
     out["bonds_intact"] = bonds.intact;
     out["bonds_damaged"] = bonds.damaged;
     out["bonds_broken_tension"] = bonds.broken_tension;
     out["bonds_broken_shear"] = bonds.broken_shear;
   }
-  for (const auto& protocol : model_.loading) protocol->monitors(s, out);
+  for (const auto& protocol : model_.loading) protocol->monitors(e, out);
   return out;
 }
 
 std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
-  const Simulation& s = sim();
-  const ParticleStore& p = s.particles();
   kind = "particles";
-  const auto n = std::int64_t(p.size());
+  if (engine().processes() > 1) return gathered_snapshot();
+  const Simulation& s = sim();
   std::vector<protocol::Array> arrays;
-  arrays.push_back(protocol::Array::from_f64("particle_position", {n, 3}, flatten(p.position)));
-  arrays.push_back(protocol::Array::from_f64("particle_radius", {n}, p.radius));
-  arrays.push_back(protocol::Array::from_f64("particle_velocity", {n, 3}, flatten(p.velocity)));
-  arrays.push_back(protocol::Array::from_i64("particle_id", {n}, p.id));
+  append_particle_arrays(s.particles(), s.materials().count() > 1, arrays);
   // The rest as the DEM section's "snapshot" block chooses (snapshot_contents.hpp).
   const SnapshotContents& contents = config_.snapshot;
   if (contents.particle_stress) {
     // Per-particle Love–Weber stress (particle_stress.hpp): stress profiles and
     // maps come from the file; ParaView shows it as a Tensor6 on the particles.
     std::vector<double> stress;
-    stress.reserve(std::size_t(6 * n));
+    stress.reserve(6 * s.particles().size());
     for (const Stress6& v : particle_stress(s)) stress.insert(stress.end(), v.begin(), v.end());
-    arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {n, 6}, stress));
-  }
-  if (s.materials().count() > 1) {  // graded bodies only: the zone (material) of each particle
-    const std::vector<std::int64_t> material(p.material.begin(), p.material.end());
-    arrays.push_back(protocol::Array::from_i64("particle_material", {n}, material));
+    arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {std::int64_t(s.particles().size()), 6}, stress));
   }
   if (contents.bonds && s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
   if (contents.contacts) append_contact_arrays(s, contents.contacts_min_force, arrays);
   if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, model_.generation ? &model_.generation->profile : nullptr, arrays);
-  if (contents.walls && !s.walls().empty()) {
-    std::vector<Vec3> vertices;
-    std::vector<std::int64_t> facets, facet_wall;
-    for (std::size_t w = 0; w < s.walls().size(); ++w) {
-      const Wall& wall = s.walls()[w];
-      const auto offset = std::int64_t(vertices.size());
-      vertices.insert(vertices.end(), wall.vertices.begin(), wall.vertices.end());
-      for (const auto& f : wall.facets) {
-        for (const auto v : f) facets.push_back(offset + std::int64_t(v));
-        facet_wall.push_back(std::int64_t(w));
-      }
-    }
-    arrays.push_back(protocol::Array::from_f64("wall_vertices", {std::int64_t(vertices.size()), 3}, flatten(vertices)));
-    arrays.push_back(protocol::Array::from_i64("wall_facets", {std::int64_t(facets.size() / 3), 3}, facets));
-    // Which wall each facet is (its index in the DEM's wall list, the order of
-    // the wall_<name> monitors): ParaView thresholds on it to show the pile alone.
-    arrays.push_back(protocol::Array::from_i64("wall_facet_wall", {std::int64_t(facet_wall.size())}, facet_wall));
-  }
+  if (contents.walls) append_wall_arrays(s.walls(), arrays);
+  return arrays;
+}
+
+std::vector<protocol::Array> DemBackend::gathered_snapshot() {
+  // Every process takes part in the gather; rank 0 alone speaks, the others' arrays are dropped.
+  const DemEngine& e = engine();
+  const ParticleStore body = e.whole_body_by_id();
+  std::vector<protocol::Array> arrays;
+  append_particle_arrays(body, e.part().materials().count() > 1, arrays);
+  if (config_.snapshot.walls) append_wall_arrays(e.part().walls(), arrays);
   return arrays;
 }
 

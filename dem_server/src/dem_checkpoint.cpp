@@ -6,6 +6,8 @@
 // triaxial controls, the platen axis, the pile's and the cell's references,
 // the generation report) follows from the section and the interface mesh,
 // which a resumed run sends again before restore: it is rebuilt, not stored.
+#include <string>
+
 #include "dfc/common/state_archive.hpp"
 #include "dfc/dem/dem_backend.hpp"
 
@@ -15,7 +17,17 @@ namespace {
 constexpr std::uint32_t kLayoutVersion = 6;  ///< raise when the stored members change
 }  // namespace
 
+namespace {
+/// A body on many processes has no checkpoint yet (docs/determinism.md §4); configure withdrew the capability.
+void refuse_on_many_processes(int processes) {
+  if (processes > 1)
+    throw protocol::ProtocolError(protocol::ErrorCode::unsupported, "dem_server on " + std::to_string(processes) +
+                                                                        " processes writes no checkpoint yet; run it on one process (participants.dem.mpi_ranks 1) to checkpoint");
+}
+}  // namespace
+
 std::string DemBackend::checkpoint_state() {
+  refuse_on_many_processes(processes_);
   StateWriter out;
   out.value(kLayoutVersion);
   sim().save_state(out);
@@ -27,6 +39,8 @@ std::string DemBackend::checkpoint_state() {
 }
 
 void DemBackend::restore_state(std::string_view bytes) {
+  refuse_on_many_processes(processes_);
+  engine_.reset();  // the body is replaced: its engine is made again at the next use
   StateReader in(bytes, "the dem_server checkpoint");
   if (in.value<std::uint32_t>() != kLayoutVersion) in.fail("state layout " + std::to_string(kLayoutVersion));
   sim().load_state(in);

@@ -74,12 +74,13 @@ TEST(TriaxialWalls, AxesSizeAndCompressionPositiveStress) {
 // the error is at round-off; the overlap then solves kn d = sigma (2R - 2d)^2.
 TEST(TriaxialWalls, ServoBringsEveryWallToTheConfiningStress) {
   SphereInBox s = sphere_in_box();
+  LocalEngine engine(s.sim);
   const BoxAxes axes = box_axes(box_vertices(s.sim.walls(), s.box));
   const double sigma = 2e4;  // Pa
   const TriaxialControl control{.confining_stress = sigma, .gain = 0.5, .max_strain_rate = 1000.0, .platen_speed = std::nullopt};
   const double dt = 1e-6;
   BoxStress stress;
-  for (int step = 0; step < 400; ++step) stress = triaxial_step(s.sim, s.box, axes, control, dt);
+  for (int step = 0; step < 400; ++step) stress = triaxial_step(engine, s.box, axes, control, dt);
   EXPECT_LT(confinement_error(stress, control), 1e-9);
   // kn d = sigma (2R - 2d)^2, the smaller root.
   const double a = 4 * sigma, b = -(8 * sigma * kRadius + kKn), c = 4 * sigma * kRadius * kRadius;
@@ -92,15 +93,16 @@ TEST(TriaxialWalls, ServoBringsEveryWallToTheConfiningStress) {
 
 TEST(TriaxialWalls, ShearingMovesThePlatensAtTheirSpeedAndHoldsTheSides) {
   SphereInBox s = sphere_in_box();
+  LocalEngine engine(s.sim);
   const BoxAxes axes = box_axes(box_vertices(s.sim.walls(), s.box));
   const double sigma = 2e4, dt = 1e-6;
   TriaxialControl control{.confining_stress = sigma, .gain = 0.5, .max_strain_rate = 1000.0, .platen_speed = std::nullopt};
-  for (int step = 0; step < 400; ++step) (void)triaxial_step(s.sim, s.box, axes, control, dt);
+  for (int step = 0; step < 400; ++step) (void)triaxial_step(engine, s.box, axes, control, dt);
   const BoxSize start = box_size(s.sim.walls(), s.box, axes);
   control.platen_speed = 1e-2;  // m/s
   BoxStress stress;
   const int steps = 2000;
-  for (int step = 0; step < steps; ++step) stress = triaxial_step(s.sim, s.box, axes, control, dt);
+  for (int step = 0; step < steps; ++step) stress = triaxial_step(engine, s.box, axes, control, dt);
   const BoxSize end = box_size(s.sim.walls(), s.box, axes);
   // The platens started at rest (the confinement converged) and moved at
   // 1 cm/s each from the second shearing step on (the first used the

@@ -45,6 +45,13 @@ const SectionDeclaration& scenario_participant() {
                                            "of the servers it starts itself (protocol/SPEC.md §2.1)")
                          .optional("connect without authentication"),
                      P::strings("args", "extra command-line arguments of the program").optional("none"),
+                     P::integer("mpi_ranks", "the DEM (program dem_server) decomposed over this many MPI processes, started by "
+                                             "mpi_launcher; the same bits for any number (docs/determinism.md §3)")
+                         .integer_within(1)
+                         .fallback(1),
+                     P::strings("mpi_launcher", "with mpi_ranks above 1: the command that starts the processes, before '-n N' and the "
+                                                "program (e.g. [\"srun\"] on a SLURM cluster, [\"mpiexec\"] for MPICH)")
+                         .optional("[\"mpiexec\", \"--oversubscribe\"] (OpenMPI, from PATH)"),
                      P::any_object("config", "the server's section (dem_server --help, fdm_server --help, continuum_server --help); gravity comes from the top level")},
   };
   return s;

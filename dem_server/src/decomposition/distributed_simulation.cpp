@@ -129,6 +129,7 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, Simulation& local)
   if (local_.periodic_cell()) throw UserError("a periodic cell cannot be decomposed over processes yet; run it on one process");
   send_slots_.resize(std::size_t(ranks_));
   receive_slots_.resize(std::size_t(ranks_));
+  owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);  // until the first decomposition: rank 0's body is the whole
 }
 
 void DistributedSimulation::collectively(const std::function<void()>& work) const {
@@ -169,6 +170,26 @@ double DistributedSimulation::critical_timestep() const {
 void DistributedSimulation::step(double dt, ContactRecord record) {
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  if (!decomposed_ && (whole_body_steps_ || local_.seam_balance_pending())) {
+    // A graded body's seam balance (seam_balance.hpp) solves over the whole
+    // body, and the lists of its step are searched to the bonding gap (a
+    // coarser grid than the skin's, so another canonical order): until the
+    // whole body's lists are next due for a rebuild, every process steps the
+    // whole body as on one; the body is decomposed at that rebuild, where the
+    // whole body's own lists would take the skin's grid too.
+    if (!whole_body_steps_) {
+      const auto held = std::int64_t(local_.particles().size());
+      std::int64_t fewest = 0, most = 0;
+      MPI_Allreduce(&held, &fewest, 1, MPI_INT64_T, MPI_MIN, comm_);
+      MPI_Allreduce(&held, &most, 1, MPI_INT64_T, MPI_MAX, comm_);
+      if (fewest != most)  // on every process alike
+        throw UserError("a graded body's seam balance solves over the whole body: build the whole body on every process before its first step");
+      owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);
+    }
+    collectively([&] { local_.step(dt, record); });
+    whole_body_steps_ = !local_.lists_stale();  // the same on every process: each steps the same body
+    return;
+  }
   if (!decomposed_ || rebuild_requested_) {
     rebuild_requested_ = false;
     const auto t = clock::now();
@@ -181,15 +202,13 @@ void DistributedSimulation::step(double dt, ContactRecord record) {
   t = clock::now();
   update_halo();
   update_wall_forces();
-  // The step's own Verlet test saw the halo's wrong motion: the whole body's decides.
-  const bool rebuild = lists_used_up();
+  // The step's own Verlet test saw the halo's wrong motion: the whole body's
+  // decides. A rebuild is due at the start of the next step, as on one process
+  // (Simulation::step): until then the step's outputs (contacts, damping) stay
+  // in the slots they were computed in, for whatever reads them.
+  if (lists_used_up()) rebuild_requested_ = true;
   local_.set_lists_stale(false);
   stats_.halo_seconds += seconds_since(t);
-  if (rebuild) {
-    t = clock::now();
-    decompose();
-    stats_.decompose_seconds += seconds_since(t);
-  }
 }
 
 bool DistributedSimulation::lists_used_up() const {
@@ -285,17 +304,8 @@ void DistributedSimulation::decompose() {
     recut = most > (1.0 + rebalance_tolerance) * double(body_count) / double(ranks_);
   }
   if (recut) {
-    std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
-    const int my_count = as_count(mine.size());
-    MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-    std::size_t total = 0;
-    for (std::size_t q = 0; q < counts.size(); ++q) {
-      offsets[q] = as_count(total);
-      total += std::size_t(counts[q]);
-    }
-    std::vector<double> all(total);
-    MPI_Allgatherv(mine.data(), my_count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_);
-    std::vector<Vec3> points(total / 3);
+    const std::vector<double> all = gather_over_processes(mine);
+    std::vector<Vec3> points(all.size() / 3);
     for (std::size_t k = 0; k < points.size(); ++k) points[k] = {all[3 * k], all[3 * k + 1], all[3 * k + 2]};
     // Equal weights: the work of a sphere is about that of any other in a
     // packing of one coordination number.
@@ -591,30 +601,39 @@ std::vector<ParticleRecord> DistributedSimulation::gather_particles(int root) co
   return out;
 }
 
-namespace {
-/// The whole body's sum of every process's exact sums (their limbs add, SPEC of exact_sum.hpp).
-template <std::size_t N>
-std::array<ExactSum, N> sum_over_processes(const std::array<ExactSum, N>& mine, MPI_Comm comm) {
+std::vector<double> DistributedSimulation::gather_over_processes(std::span<const double> values) const {
+  const int mine = as_count(values.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
+  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < counts.size(); ++q) {
+    offsets[q] = as_count(total);
+    total += std::size_t(counts[q]);
+  }
+  std::vector<double> all(total);
+  MPI_Allgatherv(values.data(), mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_);
+  return all;
+}
+
+void DistributedSimulation::sum_over_processes(std::span<ExactSum> sums) const {
+  // The limbs of exact sums add (exact_sum.hpp): an integer MPI_SUM of them is the exact total.
   constexpr std::size_t width = std::tuple_size_v<decltype(ExactSum{}.normalised_limbs())>;
-  std::vector<std::int64_t> limbs(N * width), total(N * width);
-  for (std::size_t k = 0; k < N; ++k) {
-    const auto l = mine[k].normalised_limbs();
+  std::vector<std::int64_t> limbs(sums.size() * width), total(sums.size() * width);
+  for (std::size_t k = 0; k < sums.size(); ++k) {
+    const auto l = sums[k].normalised_limbs();
     std::copy(l.begin(), l.end(), limbs.begin() + std::ptrdiff_t(k * width));
   }
-  MPI_Allreduce(limbs.data(), total.data(), int(limbs.size()), MPI_INT64_T, MPI_SUM, comm);
-  std::array<ExactSum, N> out{};
-  for (std::size_t k = 0; k < N; ++k) {
+  MPI_Allreduce(limbs.data(), total.data(), as_count(limbs.size()), MPI_INT64_T, MPI_SUM, comm_);
+  for (std::size_t k = 0; k < sums.size(); ++k) {
     std::array<std::int64_t, width> l{};
     std::copy_n(total.begin() + std::ptrdiff_t(k * width), width, l.begin());
-    out[k] = ExactSum::from_limbs(l);
+    sums[k] = ExactSum::from_limbs(l);
   }
-  return out;
 }
-}  // namespace
 
 Measurements DistributedSimulation::measure() const {
   MeasureSums sums = measure_sums(local_, owned_);
-  sums.sums = sum_over_processes(sums.sums, comm_);
+  sum_over_processes(sums.sums);
   std::int64_t counts[3] = {sums.particles, sums.pair_contacts, sums.wall_contacts}, total[3]{};
   MPI_Allreduce(counts, total, 3, MPI_INT64_T, MPI_SUM, comm_);
   int complete = sums.outputs_complete ? 1 : 0, all_complete = 0;
@@ -628,12 +647,12 @@ Measurements DistributedSimulation::measure() const {
 
 Vec3 DistributedSimulation::momentum() const {
   const ParticleStore& p = local_.particles();
-  const auto mine = exact_accumulators<3>(p.size(), local_.threads(), [&](std::size_t i) {
+  auto body = exact_accumulators<3>(p.size(), local_.threads(), [&](std::size_t i) {
     if (!owned_[i]) return std::array<double, 3>{};
     const Vec3 m = p.mass[i] * p.velocity[i];
     return std::array<double, 3>{m.x, m.y, m.z};
   });
-  const auto body = sum_over_processes(mine, comm_);
+  sum_over_processes(body);
   return {body[0].value(), body[1].value(), body[2].value()};
 }
 

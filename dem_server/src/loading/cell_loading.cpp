@@ -27,16 +27,18 @@ class PeriodicCellLoading final : public LoadingProtocol {
   }
 
   [[nodiscard]] bool drives_step() const override { return true; }
-  void step(Simulation& s, double dt) override { stress_sum_ += servo_step(s, servo_, dt).diagonal(); }
+  // A periodic cell runs on one process (DistributedSimulation refuses it): its part is the whole body.
+  void step(DemEngine& engine, double dt) override { stress_sum_ += servo_step(engine.part(), servo_, dt).diagonal(); }
 
-  void averages(const Simulation& /*s*/, const AdvanceSums& sums, nlohmann::json& out) override {
+  void averages(const DemEngine& /*engine*/, const AdvanceSums& sums, nlohmann::json& out) override {
     out["cell_stress_xx_pa"] = sums.inv_steps * stress_sum_.x;
     out["cell_stress_yy_pa"] = sums.inv_steps * stress_sum_.y;
     out["cell_stress_zz_pa"] = sums.inv_steps * stress_sum_.z;
     stress_sum_ = Vec3{};
   }
 
-  void monitors(const Simulation& s, nlohmann::json& out) const override {
+  void monitors(const DemEngine& engine, nlohmann::json& out) const override {
+    const Simulation& s = engine.part();
     const PeriodicCell& cell = *s.periodic_cell();
     const Vec3 l = cell.length();
     const Vec3& l0 = reference_length_;

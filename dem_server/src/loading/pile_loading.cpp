@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "dfc/common/unit_names.hpp"
 #include "dfc/dem/foundation_loading.hpp"
@@ -36,11 +38,13 @@ class PileLoading final : public LoadingProtocol {
     start_step_ = config_.start_step;
   }
 
-  void before_advance(const Simulation& s, std::int64_t steps) override {
+  void before_advance(const DemEngine& engine, std::int64_t steps) override {
+    const Simulation& s = engine.part();
     ramping_ = !waiting_ && s.step_count() + steps > start_step_ && s.step_count() < start_step_ + config_.ramp_steps;
   }
 
-  void before_step(Simulation& s) override {
+  void before_step(DemEngine& engine) override {
+    Simulation& s = engine.part();
     // The loading stage's damping from the first moving step; set here each
     // step rather than once so that a run resumed from a checkpoint (which
     // restores waiting_ and start_step_, not the settings) has it too.
@@ -50,22 +54,23 @@ class PileLoading final : public LoadingProtocol {
       s.set_wall_velocity(wall_, ramped_velocity(config_.velocity, s.step_count() - start_step_, config_.ramp_steps));
   }
 
-  void after_step(const Simulation& s) override {
-    const Wall& pile = s.walls()[wall_];
+  void after_step(const DemEngine& engine) override {
+    const Wall& pile = engine.part().walls()[wall_];
     tip_sum_ += facets_force(pile, tip_);
     inner_sum_ += facets_force(pile, inner_);
     outer_sum_ += facets_force(pile, outer_);
   }
 
-  void end_advance(Simulation& s) override {
-    if (!waiting_ || !pile_may_start(*config_.start_when, s.step_count(), config_.start_step, measure(s).unbalanced_force_ratio)) return;
+  void end_advance(DemEngine& engine) override {
+    Simulation& s = engine.part();
+    if (!waiting_ || !pile_may_start(*config_.start_when, s.step_count(), config_.start_step, engine.measure().unbalanced_force_ratio)) return;
     start_step_ = s.step_count();
     s.set_wall_velocity(wall_, ramped_velocity(config_.velocity, 0, config_.ramp_steps));
     waiting_ = false;
-    std::cerr << "dem_server: pile starts at step " << s.step_count() << " (pile.start_when met)" << std::endl;
+    if (engine.rank() == 0) std::cerr << "dem_server: pile starts at step " << s.step_count() << " (pile.start_when met)" << std::endl;
   }
 
-  void averages(const Simulation& /*s*/, const AdvanceSums& sums, nlohmann::json& out) override {
+  void averages(const DemEngine& /*engine*/, const AdvanceSums& sums, nlohmann::json& out) override {
     const double inv_n = sums.inv_steps;
     const double total = -dot(inv_n * sums.wall_force[wall_], direction());
     const double tip = -dot(inv_n * tip_sum_, direction());
@@ -80,17 +85,18 @@ class PileLoading final : public LoadingProtocol {
     tip_sum_ = inner_sum_ = outer_sum_ = Vec3{};
   }
 
-  void monitors(const Simulation& s, nlohmann::json& out) const override {
+  void monitors(const DemEngine& engine, nlohmann::json& out) const override {
+    const Simulation& s = engine.part();
     const Vec3 moved = s.walls()[wall_].vertices.front() - reference_;
     out["pile_displacement_m"] = dot(moved, direction());
     out["pile_peak_force_n"] = std::isfinite(peak_force_) ? peak_force_ : 0.0;
     for (const char* force : {"pile_force_n", "pile_tip_force_n", "pile_shaft_force_n"})
       if (!out.contains(force)) out[force] = 0.0;
-    out["pile_inertial_number"] = loading_inertial_number(s, out["pile_tip_force_n"].get<double>());
+    out["pile_inertial_number"] = loading_inertial_number(engine, out["pile_tip_force_n"].get<double>());
     if (inner_.empty()) return;
     for (const char* force : {"pile_inner_shaft_force_n", "pile_outer_shaft_force_n"})
       if (!out.contains(force)) out[force] = 0.0;
-    const PlugColumn plug = plug_column(s.particles(), config_.geometry, config_.geometry.tip_z + moved.z);
+    const PlugColumn plug = plug_column_of(engine, config_.geometry.tip_z + moved.z);
     out["pile_plug_length_m"] = plug.length;
     out["pile_plug_particles"] = plug.particles;
   }
@@ -119,13 +125,26 @@ class PileLoading final : public LoadingProtocol {
   /// pressure over the flat end (an open tube's annulus). 0 while the pile rests. The
   /// grain scale is taken once the pile moves (the body is then complete; a resumed
   /// run takes it again from the same particles).
-  [[nodiscard]] double loading_inertial_number(const Simulation& s, double tip_force) const {
+  [[nodiscard]] double loading_inertial_number(const DemEngine& engine, double tip_force) const {
+    const Simulation& s = engine.part();
     const double speed = norm(s.walls()[wall_].prescribed_velocity);
     if (waiting_ || s.step_count() < start_step_ || !(speed > 0.0)) return 0.0;
-    if (!grains_) grains_ = grain_scale(s.particles());
+    if (!grains_) grains_ = grain_scale_of(body_accumulators<4>(engine, [&](std::size_t i) { return grain_terms(s.particles(), i); }));
     const double r = config_.geometry.radius, ri = config_.geometry.inner_radius;
     const double tip_area = std::numbers::pi * (r * r - ri * ri);
     return inertial_number(speed / (2.0 * r), grains_->mean_diameter, tip_force / tip_area, grains_->density);
+  }
+
+  /// The soil column in the bore of the whole body, its tip at tip_z: every
+  /// process's particles in the bore, gathered (the column's order is fixed by their tops).
+  [[nodiscard]] PlugColumn plug_column_of(const DemEngine& engine, double tip_z) const {
+    const std::vector<PlugTop> mine = plug_tops(engine.part().particles(), config_.geometry, tip_z, engine.owned());
+    std::vector<double> flat;
+    for (const PlugTop& top : mine) flat.insert(flat.end(), {top.z, top.volume, top.radius});
+    const std::vector<double> all = engine.gather_over_processes(flat);
+    std::vector<PlugTop> tops;
+    for (std::size_t k = 0; k + 2 < all.size(); k += 3) tops.push_back({all[k], all[k + 1], all[k + 2]});
+    return dfc::dem::plug_column_of(std::move(tops), config_.geometry, tip_z);
   }
 
   /// Unit vector of the pile's motion (its velocity direction; -z if it does not move).

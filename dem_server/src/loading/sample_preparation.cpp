@@ -64,8 +64,9 @@ PreparationReport confine_in_walls(Simulation& sim, const TriaxialWalls& box, co
     report.expansion = expand_radii(sim, expansion.final_radius, expansion.spec, expansion.fraction_of_critical,
                                     box_size(sim.walls(), box, axes).volume());
   BoxStress stress;
+  LocalEngine engine(sim);  // the preparation runs before the body is decomposed: every process prepares it whole
   const EquilibriumRun run = run_to_equilibrium(sim, target, [&] {
-    stress = triaxial_step(sim, box, axes, control, dt);
+    stress = triaxial_step(engine, box, axes, control, dt);
     return confinement_error(stress, control);
   });
   for (const std::size_t w : box.in_order()) sim.set_wall_velocity(w, {});

@@ -3,6 +3,9 @@
 // confinement stage (every wall at sigma_3, then bonds), and the shearing
 // stage of the coupled advance (platens at the strain rate, lateral walls at
 // sigma_3) with its stress, strain and porosity monitors.
+#include <array>
+#include <numbers>
+
 #include "dfc/common/unit_names.hpp"
 #include "dfc/dem/loading_protocol.hpp"
 #include "dfc/dem/model_builder.hpp"
@@ -50,24 +53,30 @@ class TriaxialLoading final : public LoadingProtocol {
   }
 
   [[nodiscard]] bool drives_step() const override { return true; }
-  void step(Simulation& s, double dt) override {
-    const BoxStress box = triaxial_step(s, config_.walls, axes_, control_, dt);
+  void step(DemEngine& engine, double dt) override {
+    const BoxStress box = triaxial_step(engine, config_.walls, axes_, control_, dt);
     axial_sum_ += box.axial();
     lateral_sum_ += box.lateral();
   }
 
-  void averages(const Simulation& /*s*/, const AdvanceSums& sums, nlohmann::json& out) override {
+  void averages(const DemEngine& /*engine*/, const AdvanceSums& sums, nlohmann::json& out) override {
     out["axial_stress_pa"] = sums.inv_steps * axial_sum_;
     out["lateral_stress_pa"] = sums.inv_steps * lateral_sum_;
     out["deviatoric_stress_pa"] = sums.inv_steps * (axial_sum_ - lateral_sum_);
     axial_sum_ = lateral_sum_ = 0.0;
   }
 
-  void monitors(const Simulation& s, nlohmann::json& out) const override {
+  void monitors(const DemEngine& engine, nlohmann::json& out) const override {
+    const Simulation& s = engine.part();
     const BoxSize size = box_size(s.walls(), config_.walls, axes_);
     out["axial_strain"] = (reference_.height - size.height) / reference_.height;
     out["volumetric_strain"] = (reference_.volume() - size.volume()) / reference_.volume();
-    out["porosity"] = box_porosity(s.particles(), size);
+    // The spheres' volume summed exactly over the whole body (any process count gives its bits).
+    const auto solid = body_accumulators<1>(engine, [&](std::size_t i) {
+      const double r = s.particles().radius[i];
+      return std::array<double, 1>{4.0 / 3.0 * std::numbers::pi * r * r * r};
+    });
+    out["porosity"] = box_porosity(solid[0].value(), size);
     if (out.contains("axial_stress_pa")) return;
     const BoxStress stress = box_stress(s.walls(), config_.walls, axes_, size);
     out["axial_stress_pa"] = stress.axial();

@@ -25,13 +25,18 @@ std::array<double, 6> areas(const BoxSize& s) {
 std::array<double, 6> extents(const BoxSize& s) { return {s.height, s.height, s.width[0], s.width[0], s.width[1], s.width[1]}; }
 
 /// Contacts of wall w that carried a force in the last step.
-std::size_t loaded_contacts(const Simulation& sim, std::size_t w) {
+/// The contacts of wall w that carry a force, over the whole body (each
+/// counted by the process that owns its particle; collective).
+std::size_t loaded_contacts(const DemEngine& engine, std::size_t w) {
+  const Simulation& sim = engine.part();
   const ContactOutputs& out = sim.contact_outputs();
   const std::size_t offset = sim.wall_output_offset(w);
-  const std::size_t n = sim.wall_contacts(w).size();
-  std::size_t loaded = 0;
-  for (std::size_t k = 0; k < n; ++k) loaded += norm2(out.force[offset + k]) > 0.0 ? 1 : 0;
-  return loaded;
+  const WallContacts& contacts = sim.wall_contacts(w);
+  std::array<ExactSum, 1> loaded{};
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    if (engine.owns(contacts.particle[k]) && norm2(out.force[offset + k]) > 0.0) loaded[0].add(1.0);
+  engine.sum_over_processes(loaded);
+  return std::size_t(loaded[0].value());  // a count below 2^53: exact
 }
 
 Vec3 unit_between(const Vec3& from, const Vec3& to, const std::string& what) {
@@ -81,15 +86,16 @@ BoxStress box_stress(std::span<const Wall> walls, const TriaxialWalls& box, cons
   return s;
 }
 
-BoxStress triaxial_step(Simulation& sim, const TriaxialWalls& box, const BoxAxes& axes, const TriaxialControl& control, double dt) {
-  sim.step(dt);
+BoxStress triaxial_step(DemEngine& engine, const TriaxialWalls& box, const BoxAxes& axes, const TriaxialControl& control, double dt) {
+  engine.step(dt, ContactRecord::complete);
+  Simulation& sim = engine.part();
   const auto order = box.in_order();
   const auto out = outward(axes);
   const BoxSize size = box_size(sim.walls(), box, axes);
   const BoxStress stress = box_stress(sim.walls(), box, axes, size);
   const auto area = areas(size);
   const auto extent = extents(size);
-  const double r_max = largest_radius(sim.particles());
+  const double r_max = engine.max_over_processes(largest_radius(sim.particles()));
   for (std::size_t k = 0; k < 6; ++k) {
     const std::size_t w = order[k];
     const bool platen = k < 2;
@@ -100,14 +106,16 @@ BoxStress triaxial_step(Simulation& sim, const TriaxialWalls& box, const BoxAxes
     const double kn = sim.walls()[w].law.stiffness_bound(r_max).normal;
     const double cap = 0.5 * control.max_strain_rate * extent[k];
     const double error = control.confining_stress - stress.wall[k];  // > 0: not compressed enough, move in
-    const std::size_t contacts = loaded_contacts(sim, w);
+    const std::size_t contacts = loaded_contacts(engine, w);
     const double inward = contacts > 0 ? control.gain * area[k] * error / (kn * double(contacts) * dt) : (error > 0.0 ? cap : -cap);
     sim.set_wall_velocity(w, -std::clamp(inward, -cap, cap) * out[k]);
   }
   return stress;
 }
 
-double box_porosity(const ParticleStore& particles, const BoxSize& size) noexcept { return 1.0 - sphere_volume_sum(particles) / size.volume(); }
+double box_porosity(const ParticleStore& particles, const BoxSize& size) noexcept { return box_porosity(sphere_volume_sum(particles), size); }
+
+double box_porosity(double solid_volume, const BoxSize& size) noexcept { return 1.0 - solid_volume / size.volume(); }
 
 double confinement_error(const BoxStress& stress, const TriaxialControl& control) noexcept {
   double worst = 0.0;

@@ -61,14 +61,14 @@ class UcsLoading final : public LoadingProtocol {
     axis_ = platen_axis(walls[config_.top_wall].vertices, walls[config_.bottom_wall].vertices);
   }
 
-  void averages(const Simulation& /*s*/, const AdvanceSums& sums, nlohmann::json& out) override {
+  void averages(const DemEngine& /*engine*/, const AdvanceSums& sums, nlohmann::json& out) override {
     out["axial_stress_pa"] = axial_stress(axis_, sums.inv_steps * sums.wall_force[config_.top_wall],
                                           sums.inv_steps * sums.wall_force[config_.bottom_wall], area_);
   }
 
-  void monitors(const Simulation& s, nlohmann::json& out) const override {
-    const Wall& top = s.walls()[config_.top_wall];
-    const Wall& bottom = s.walls()[config_.bottom_wall];
+  void monitors(const DemEngine& engine, nlohmann::json& out) const override {
+    const Wall& top = engine.part().walls()[config_.top_wall];
+    const Wall& bottom = engine.part().walls()[config_.bottom_wall];
     out["axial_strain"] = axial_strain(axis_, platen_separation(axis_, top.vertices, bottom.vertices));
     if (!out.contains("axial_stress_pa")) out["axial_stress_pa"] = axial_stress(axis_, top.force, bottom.force, area_);
   }

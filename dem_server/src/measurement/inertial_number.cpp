@@ -16,14 +16,19 @@ double inertial_number(double shear_rate, double grain_diameter, double pressure
 }
 
 
+std::array<double, 4> grain_terms(const ParticleStore& particles, std::size_t i) {
+  const double r = particles.radius[i];
+  return {1.0, 2.0 * r, particles.mass[i], 4.0 / 3.0 * std::numbers::pi * r * r * r};
+}
+
+GrainScale grain_scale_of(const std::array<ExactSum, 4>& sums) {
+  const double n = sums[0].value();  // a count below 2^53: exact
+  if (n == 0.0) return {};
+  return {sums[1].value() / n, sums[2].value() / sums[3].value()};
+}
+
 GrainScale grain_scale(const ParticleStore& particles) {
-  const std::size_t n = particles.size();
-  if (n == 0) return {};
-  const auto [diameter, mass, volume] = exact_sums<3>(n, 1, [&](std::size_t i) {
-    const double r = particles.radius[i];
-    return std::array<double, 3>{2.0 * r, particles.mass[i], 4.0 / 3.0 * std::numbers::pi * r * r * r};
-  });
-  return {diameter / double(n), mass / volume};
+  return grain_scale_of(exact_accumulators<4>(particles.size(), 1, [&](std::size_t i) { return grain_terms(particles, i); }));
 }
 
 }  // namespace dfc::dem

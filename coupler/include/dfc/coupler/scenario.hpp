@@ -30,10 +30,11 @@ struct ParticipantSpec {
   std::string slot;                       ///< "dem" or "continuum"
   std::string program;                    ///< as written in the scenario
   std::filesystem::path executable;       ///< resolved path (empty when connecting to an endpoint)
-  std::vector<std::string> args;          ///< extra command-line arguments
+  std::vector<std::string> args;          ///< extra command-line arguments (with mpi_ranks > 1: the launcher's, then the program and its own)
   std::string endpoint;                   ///< connect here instead of starting a process
   nlohmann::json config;                  ///< the section sent in `configure` (gravity injected)
   std::filesystem::path key_file;         ///< with endpoint: that server's key file (SPEC.md §2.1); empty: none
+  std::int64_t mpi_ranks = 1;             ///< processes of a DEM started under MPI (executable is then the launcher)
   [[nodiscard]] std::string key_path() const { return "participants." + slot; }
 };
 

@@ -34,12 +34,15 @@
 //                              lateral wall stress and their difference (averaged over the advance),
 //                              (H0 - H)/H0 and (V0 - V)/V0 from the end of the confinement
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "dfc/dem/dem_config.hpp"
+#include "dfc/dem/dem_engine.hpp"
 #include "dfc/dem/model_builder.hpp"
 #include "dfc/protocol/solver_backend.hpp"
 
@@ -47,6 +50,12 @@ namespace dfc::dem {
 
 class DemBackend final : public protocol::SolverBackend {
  public:
+  /// `make_engine` makes the engine of each configured model (dem_engine.hpp)
+  /// over `processes` processes, this one being `rank`: a LocalEngine on one,
+  /// or under MPI a DistributedEngine in every process's DemBackend
+  /// (dem_server --mpi, where every process runs the same requests and rank 0
+  /// speaks the protocol: mpi_server.hpp).
+  explicit DemBackend(std::function<std::unique_ptr<DemEngine>(Simulation&)> make_engine = make_local_engine, int processes = 1, int rank = 0);
   [[nodiscard]] protocol::SolverIdentity identity() const override;
   nlohmann::json configure(const nlohmann::json& section) override;
   void set_interface(const protocol::InterfaceMesh& mesh) override;
@@ -57,16 +66,24 @@ class DemBackend final : public protocol::SolverBackend {
   [[nodiscard]] std::string checkpoint_state() override;
   void restore_state(std::string_view bytes) override;
 
-  /// The model (tests, tools). Throws ProtocolError(out_of_order) before configure.
+  /// The model (tests, tools): this process's part of it. Throws ProtocolError(out_of_order) before configure.
   [[nodiscard]] const Simulation& simulation() const;
 
  private:
   Simulation& sim();
+  /// The model's engine, made at its first use after configure and set_interface (which may still remove spheres).
+  DemEngine& engine();
+  /// The particle arrays of a snapshot of a body on many processes: gathered by id on rank 0.
+  [[nodiscard]] std::vector<protocol::Array> gathered_snapshot();
   /// configure's info.monitor_units (SPEC.md §6.3): the unit of every monitor monitors() may send.
   [[nodiscard]] nlohmann::json monitor_units() const;
 
+  std::function<std::unique_ptr<DemEngine>(Simulation&)> make_engine_;
+  int processes_ = 1;
+  int rank_ = 0;  ///< 0 writes the backend's lines on stderr
   DemConfig config_;
   DemModel model_;
+  std::unique_ptr<DemEngine> engine_;  ///< over model_.simulation; null until first used
   std::optional<std::size_t> interface_wall_;
   std::size_t generation_removed_by_interface_ = 0;  ///< generated spheres the coupling wall cut (set_interface)
   LoadingProtocol* stepper_ = nullptr;        ///< the protocol whose step replaces Simulation::step (none: the plain step)

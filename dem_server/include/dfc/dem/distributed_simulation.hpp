@@ -33,10 +33,12 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <mpi.h>
 
+#include "dfc/dem/exact_sum.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/rcb_decomposition.hpp"
 #include "dfc/dem/simulation.hpp"
@@ -100,6 +102,9 @@ class DistributedSimulation {
   [[nodiscard]] const Simulation& local() const noexcept { return local_; }
   /// Whether slot `slot` of local().particles() is this process's own.
   [[nodiscard]] bool owns(std::size_t slot) const { return owned_.at(slot) != 0; }
+  /// Per slot of local().particles(): 1 where this process owns it (before
+  /// the first decomposition rank 0 owns every particle).
+  [[nodiscard]] std::span<const std::uint8_t> owned_slots() const noexcept { return owned_; }
   [[nodiscard]] const DecompositionStats& stats() const noexcept { return stats_; }
 
   /// Every owned particle of every process, by id, on `root` (empty on the
@@ -113,6 +118,10 @@ class DistributedSimulation {
   [[nodiscard]] Measurements measure() const;
   /// N s, Simulation::momentum of the whole body, to its bits (collective).
   [[nodiscard]] Vec3 momentum() const;
+  /// Replaces every process's partial `sums` by their exact total (their limbs added; collective).
+  void sum_over_processes(std::span<ExactSum> sums) const;
+  /// Every process's `values` one after the other in rank order, on every process (collective).
+  [[nodiscard]] std::vector<double> gather_over_processes(std::span<const double> values) const;
 
  private:
   /// Decomposes the body anew and moves particles and history (collective).
@@ -140,6 +149,8 @@ class DistributedSimulation {
   std::vector<std::vector<std::uint32_t>> send_slots_, receive_slots_;
   bool decomposed_ = false;
   bool rebuild_requested_ = false;
+  /// Stepping the whole body on every process until its lists are due (a graded body's seam balance, see step).
+  bool whole_body_steps_ = false;
   std::optional<RcbDecomposition> rcb_;  ///< the boxes of the last decomposition
   struct Buffers;
   std::unique_ptr<Buffers> buffers_;  ///< a decomposition's exchange buffers, kept for the next

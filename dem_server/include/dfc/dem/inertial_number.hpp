@@ -7,6 +7,10 @@
 // section 3). For a pile or foundation pushed at speed v, gamma_dot = v / D
 // (D its diameter) and p the tip pressure, tip force over tip area
 // (docs/resolution.md section 1): the monitor pile_inertial_number.
+#include <array>
+#include <cstddef>
+
+#include "dfc/dem/exact_sum.hpp"
 #include "dfc/dem/particle_store.hpp"
 
 namespace dfc::dem {
@@ -28,5 +32,10 @@ struct GrainScale {
 /// The particles' mean diameter and grain density, summed exactly
 /// (exact_sum.hpp: the same bits however the particles are ordered or split).
 [[nodiscard]] GrainScale grain_scale(const ParticleStore& particles);
+/// Slot i's terms of the grain scale's exact sums: 1, 2 r, m, 4/3 pi r^3
+/// (a decomposed body sums them over its processes, dem_engine.hpp).
+[[nodiscard]] std::array<double, 4> grain_terms(const ParticleStore& particles, std::size_t i);
+/// The grain scale from the exact sums of grain_terms over the particles.
+[[nodiscard]] GrainScale grain_scale_of(const std::array<ExactSum, 4>& sums);
 
 }  // namespace dfc::dem

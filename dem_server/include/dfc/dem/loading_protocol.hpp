@@ -13,8 +13,11 @@
 //             (consolidation, confinement in walls) and the references its
 //             monitors are measured from
 //   advance   before_advance; then on every step before_step, step (at most one
-//             protocol replaces Simulation::step with a servo-controlled step),
-//             after_step; end_advance after the steps; averages over the advance
+//             protocol replaces the engine's step with a servo-controlled step),
+//             after_step; end_advance after the steps; averages over the advance.
+//             These hooks get the DemEngine (dem_engine.hpp): on many processes
+//             every process runs them alike, and what they read of the
+//             particles for the whole body goes through its collectives
 //   monitors  its instantaneous monitors at the end of an advance
 //   progress  the few of them the coupler shows while the run goes and at its
 //             end (SPEC.md §4.2, configure's info.progress_monitors)
@@ -28,6 +31,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dfc/common/state_archive.hpp"
+#include "dfc/dem/dem_engine.hpp"
 #include "dfc/dem/simulation.hpp"
 
 namespace dfc::dem {
@@ -64,29 +68,29 @@ class LoadingProtocol {
     (void)inputs;
   }
 
-  /// True if step() replaces Simulation::step (the section reader lets at most one protocol do so).
+  /// True if step() replaces the engine's plain step (the section reader lets at most one protocol do so).
   [[nodiscard]] virtual bool drives_step() const { return false; }
-  virtual void step(Simulation& simulation, double dt) {
-    (void)simulation;
+  virtual void step(DemEngine& engine, double dt) {
+    (void)engine;
     (void)dt;
   }
-  virtual void before_advance(const Simulation& simulation, std::int64_t steps) {
-    (void)simulation;
+  virtual void before_advance(const DemEngine& engine, std::int64_t steps) {
+    (void)engine;
     (void)steps;
   }
-  virtual void before_step(Simulation& simulation) { (void)simulation; }
-  virtual void after_step(const Simulation& simulation) { (void)simulation; }
-  virtual void end_advance(Simulation& simulation) { (void)simulation; }
+  virtual void before_step(DemEngine& engine) { (void)engine; }
+  virtual void after_step(const DemEngine& engine) { (void)engine; }
+  virtual void end_advance(DemEngine& engine) { (void)engine; }
   /// Writes its advance-averaged monitors (impulse / duration) into `out` and resets its sums.
-  virtual void averages(const Simulation& simulation, const AdvanceSums& sums, nlohmann::json& out) {
-    (void)simulation;
+  virtual void averages(const DemEngine& engine, const AdvanceSums& sums, nlohmann::json& out) {
+    (void)engine;
     (void)sums;
     (void)out;
   }
   /// Adds its instantaneous monitors to `out` (which holds the averages and
   /// the common monitors); fills an averaged one the last advance did not send.
-  virtual void monitors(const Simulation& simulation, nlohmann::json& out) const {
-    (void)simulation;
+  virtual void monitors(const DemEngine& engine, nlohmann::json& out) const {
+    (void)engine;
     (void)out;
   }
 

@@ -15,6 +15,8 @@
 // at every penetration (dL/dh is unbiased). A column of less volume than
 // that is taken as empty (length 0).
 #include <cstdint>
+#include <span>
+#include <vector>
 
 #include "dfc/dem/particle_store.hpp"
 #include "dfc/dem/wall_builders.hpp"
@@ -29,8 +31,21 @@ struct PlugColumn {
   std::int64_t particles = 0;  ///< particles whose centres lie in the bore above the tip
 };
 
-/// The column in the bore of `tube` (axis and inner_radius; the tube's current
-/// tip at `tip_z`), from the particles' current positions.
+/// A particle in the bore above the tip, as the column's top is found from it.
+struct PlugTop {
+  double z = 0.0;       ///< m, its top z + r
+  double volume = 0.0;  ///< m3
+  double radius = 0.0;  ///< m
+};
+
+/// The particles in the bore of `tube` (axis and inner_radius; the tube's
+/// current tip at `tip_z`) among the slots `owned` marks (empty: all), in
+/// slot order: one process's share of the column (dem_engine.hpp).
+[[nodiscard]] std::vector<PlugTop> plug_tops(const ParticleStore& particles, const CylinderGeometry& tube, double tip_z,
+                                             std::span<const std::uint8_t> owned = {});
+/// The column of all the particles in the bore, in any order.
+[[nodiscard]] PlugColumn plug_column_of(std::vector<PlugTop> tops, const CylinderGeometry& tube, double tip_z);
+/// The column in the bore from the particles' current positions.
 [[nodiscard]] PlugColumn plug_column(const ParticleStore& particles, const CylinderGeometry& tube, double tip_z);
 
 }  // namespace dfc::dem

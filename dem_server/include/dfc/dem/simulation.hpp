@@ -120,6 +120,9 @@ class Simulation {
   /// forces, balances the seam (seam_balance.hpp) for laws that can take a
   /// load onto a bond. Meant for the start, when nothing moves.
   void bond_across_materials_now() noexcept;
+  /// Whether the next step balances the seams (bond_across_materials_now): a
+  /// solve over the whole body, which a decomposed body takes before its first decomposition.
+  [[nodiscard]] bool seam_balance_pending() const noexcept { return join_materials_requested_; }
   /// What the last seam balance did (zero before one).
   [[nodiscard]] const SeamBalanceReport& seam_balance_report() const noexcept { return seam_report_; }
   /// Pair history (rows of particle_law's layout, keyed by particle ids) that
@@ -167,6 +170,8 @@ class Simulation {
   /// Sets whether the next step rebuilds: a decomposed run replaces each
   /// part's own decision by the whole body's.
   void set_lists_stale(bool stale) noexcept { stale_ = stale; }
+  /// Whether the next step rebuilds the lists.
+  [[nodiscard]] bool lists_stale() const noexcept { return stale_; }
   /// m, the cell size of the last rebuild's grid: the slots are in the order
   /// of the cells floor(x_ref / size) (x_ref: reference_positions()), then ids.
   [[nodiscard]] double cell_size() const noexcept { return cell_size_; }
@@ -190,6 +195,8 @@ class Simulation {
   /// balance of the particles is  dP/dt = weight + wall and coupling
   /// reactions + this.
   [[nodiscard]] Vec3 damping_force_total() const;
+  /// N, per slot: the local-damping force of the last step, F_d - F (empty undamped).
+  [[nodiscard]] std::span<const Vec3> damping_forces() const noexcept { return damping_force_; }
   /// Changes alpha of local damping from the next step on (a loading stage's
   /// own damping); UserError outside [0, 1).
   void set_local_damping(double alpha);

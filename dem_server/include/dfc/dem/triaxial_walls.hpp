@@ -28,6 +28,7 @@
 #include <optional>
 #include <span>
 
+#include "dfc/dem/dem_engine.hpp"
 #include "dfc/dem/simulation.hpp"
 
 namespace dfc::dem {
@@ -84,12 +85,16 @@ struct TriaxialControl {
   std::optional<double> platen_speed;    ///< m/s, each platen towards the other; none: platens stress-controlled too
 };
 
-/// One step under the control: steps the simulation, measures the stresses and
-/// sets every wall's velocity for the next step. Returns the stresses measured.
-BoxStress triaxial_step(Simulation& simulation, const TriaxialWalls& box, const BoxAxes& axes, const TriaxialControl& control, double dt);
+/// One step under the control: steps the body, measures the stresses and
+/// sets every wall's velocity for the next step (the same on every process of
+/// a decomposed body: the wall loads and the counts are the whole body's).
+/// Returns the stresses measured.
+BoxStress triaxial_step(DemEngine& engine, const TriaxialWalls& box, const BoxAxes& axes, const TriaxialControl& control, double dt);
 
 /// 1 - sphere volume / box volume.
 [[nodiscard]] double box_porosity(const ParticleStore& particles, const BoxSize& size) noexcept;
+/// 1 - solid_volume / box volume.
+[[nodiscard]] double box_porosity(double solid_volume, const BoxSize& size) noexcept;
 
 /// Largest |sigma_target - sigma_k| / sigma_target over the stress-controlled walls.
 [[nodiscard]] double confinement_error(const BoxStress& stress, const TriaxialControl& control) noexcept;

@@ -1,0 +1,32 @@
+#include "dfc/dem/distributed_engine.hpp"
+
+#include <vector>
+
+namespace dfc::dem {
+
+double DistributedEngine::max_over_processes(double value) const {
+  double body = value;
+  MPI_Allreduce(&value, &body, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return body;
+}
+
+ParticleStore DistributedEngine::whole_body_by_id() const {
+  ParticleStore body;
+  for (const ParticleRecord& r : body_.gather_particles(0)) {
+    body.id.push_back(r.id);
+    body.position.push_back(r.position);
+    body.velocity.push_back(r.velocity);
+    body.angular_velocity.push_back(r.angular_velocity);
+    body.force.push_back(r.force);
+    body.moment.push_back(r.moment);
+    body.radius.push_back(r.radius);
+    body.mass.push_back(r.mass);
+    body.inertia.push_back(r.inertia);
+    body.material.push_back(r.material);
+  }
+  return body;
+}
+
+std::unique_ptr<DemEngine> make_world_engine(Simulation& simulation) { return std::make_unique<DistributedEngine>(MPI_COMM_WORLD, simulation); }
+
+}  // namespace dfc::dem

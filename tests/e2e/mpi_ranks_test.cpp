@@ -1,0 +1,137 @@
+// The DEM on many MPI processes gives the bits of one (issue "Beyond one
+// machine"; docs/determinism.md §3): each scenario runs through the real
+// coupler with participants.dem.mpi_ranks 1 (one process, no MPI) and N, and
+// the two results files must agree to the bit:
+//  - every time-series column (the DEM's monitors and forces, the pile's
+//    force split and plug, the continuum's side, the interface balance),
+//    except the wall-clock time;
+//  - every DEM snapshot's particles (position, velocity, radius, matched by
+//    particle id: a body on many processes is written in id order) and walls.
+// The scenarios: the bonded coupled pile (tests/e2e/scenarios/pile_bonded_restart.json:
+// soft bonds that break, the pile with its own damping, lists rebuilt), the
+// open pile's small variant (graded PCRM body, the coupling wall, the plug)
+// and the graded generation's small variant (generation on every process,
+// then decomposed, run to equilibrium). Ranks 3 and 4 run the bonded pile
+// only (label long). Built only where CMake found MPI.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "command_runner.hpp"
+#include "dfc/common/hdf5_file.hpp"
+#include "e2e_paths.hpp"
+
+namespace dfc::testing {
+namespace {
+
+/// `scenario` as the coupler reads it (its first variant, includes resolved),
+/// with the DEM on `ranks` processes, written into `folder`.
+std::filesystem::path on_ranks(const std::filesystem::path& scenario, int ranks, const std::filesystem::path& folder) {
+  const CommandResult expanded = run_command({coupler(), "expand", scenario.string()}, std::chrono::seconds(60));
+  EXPECT_EQ(expanded.exit_status, 0) << expanded.output;
+  nlohmann::json run = nlohmann::json::parse(expanded.output);
+  if (run.is_array()) run = run.at(0);
+  run["participants"]["dem"]["mpi_ranks"] = ranks;
+  run["run"].erase("checkpoint_every");  // a body on many processes writes no checkpoint yet
+  const auto path = folder / ("scenario_" + std::to_string(ranks) + ".json");
+  std::ofstream(path) << run.dump(1);
+  return path;
+}
+
+/// Runs `scenario` on `ranks` processes; returns its results file.
+std::filesystem::path run_on(const std::string& name, const std::filesystem::path& scenario, int ranks) {
+  const auto folder = fresh_directory("mpi_" + name + "_" + std::to_string(ranks));
+  const auto path = on_ranks(scenario, ranks, folder);
+  const CommandResult result = run_command({coupler(), "run", path.string(), "--out", (folder / "run").string(), "--no-progress"},
+                                           std::chrono::seconds(900));
+  EXPECT_EQ(result.exit_status, 0) << result.output;
+  return folder / "run" / "results.h5";
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+/// Rows of `values` (width per row) in the order of their ids.
+std::vector<double> by_id(const std::vector<double>& values, const std::vector<std::int64_t>& ids) {
+  std::vector<std::size_t> order(ids.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
+  const std::size_t width = ids.empty() ? 0 : values.size() / ids.size();
+  std::vector<double> out;
+  out.reserve(values.size());
+  for (const std::size_t i : order) out.insert(out.end(), values.begin() + std::ptrdiff_t(i * width), values.begin() + std::ptrdiff_t((i + 1) * width));
+  return out;
+}
+
+/// Expects `many` (a run on many processes) to hold the bits of `one`.
+void expect_same_run(const std::filesystem::path& one, const std::filesystem::path& many) {
+  const auto a = h5::File::open_read_only(one);
+  const auto b = h5::File::open_read_only(many);
+  const auto columns = h5::list_members(a, "/timeseries");
+  ASSERT_EQ(columns, h5::list_members(b, "/timeseries"));
+  ASSERT_GT(columns.size(), 10U);
+  for (const std::string& column : columns) {
+    if (column == "wall_time_s") continue;
+    EXPECT_TRUE(same_bits(h5::read_f64(a, "/timeseries/" + column), h5::read_f64(b, "/timeseries/" + column))) << "time series " << column;
+  }
+  const auto snapshots = h5::list_members(a, "/snapshots/dem");
+  ASSERT_EQ(snapshots, h5::list_members(b, "/snapshots/dem"));
+  ASSERT_GE(snapshots.size(), 2U);  // the first and the last at least
+  for (const std::string& snapshot : snapshots) {
+    const std::string group = "/snapshots/dem/" + snapshot + "/";
+    const auto ids_a = a.root().open_dataset(group + "particle_id").read_i64();
+    const auto ids_b = b.root().open_dataset(group + "particle_id").read_i64();
+    ASSERT_EQ(ids_a.size(), ids_b.size()) << group;
+    ASSERT_FALSE(ids_a.empty()) << group;
+    for (const char* array : {"particle_position", "particle_velocity", "particle_radius"})
+      EXPECT_TRUE(same_bits(by_id(h5::read_f64(a, group + array), ids_a), by_id(h5::read_f64(b, group + array), ids_b))) << group << array;
+    if (a.root().has(group + "wall_vertices")) {
+      EXPECT_TRUE(same_bits(h5::read_f64(a, group + "wall_vertices"), h5::read_f64(b, group + "wall_vertices"))) << group << "wall_vertices";
+    }
+  }
+}
+
+const std::filesystem::path& bonded_pile_on_one() {
+  static const auto results = run_on("bonded_pile", e2e_dir() / "scenarios" / "pile_bonded_restart.json", 1);
+  return results;
+}
+
+TEST(MpiRanks, BondedCoupledPileOnTwoProcessesHasTheBitsOfOne) {
+  const auto many = run_on("bonded_pile", e2e_dir() / "scenarios" / "pile_bonded_restart.json", 2);
+  expect_same_run(bonded_pile_on_one(), many);
+  // The run must exercise what the decomposition has to get right: broken bonds and a moving pile.
+  const auto broken = h5::read_f64(h5::File::open_read_only(many), "/timeseries/dem_bonds_broken_tension");
+  const auto pile = h5::read_f64(h5::File::open_read_only(many), "/timeseries/dem_pile_displacement_m");
+  EXPECT_GT(broken.back() + h5::read_f64(h5::File::open_read_only(many), "/timeseries/dem_bonds_broken_shear").back(), 0.0);
+  EXPECT_GT(pile.back(), 0.0);
+}
+
+TEST(MpiRanksLong, BondedCoupledPileOnThreeAndFourProcessesHasTheBitsOfOne) {
+  for (const int ranks : {3, 4}) {
+    SCOPED_TRACE(std::to_string(ranks) + " processes");
+    expect_same_run(bonded_pile_on_one(), run_on("bonded_pile", e2e_dir() / "scenarios" / "pile_bonded_restart.json", ranks));
+  }
+}
+
+TEST(MpiRanks, OpenPileSmallVariantOnTwoProcessesHasTheBitsOfOne) {
+  const auto scenario = e2e_dir() / "scenarios" / "open_pile_small.json";
+  const auto many = run_on("open_pile", scenario, 2);
+  expect_same_run(run_on("open_pile", scenario, 1), many);
+  EXPECT_GT(h5::read_f64(h5::File::open_read_only(many), "/timeseries/dem_pile_plug_particles").back(), 0.0);
+}
+
+TEST(MpiRanks, GradedGenerationSmallVariantOnTwoProcessesHasTheBitsOfOne) {
+  const auto scenario = e2e_dir() / "scenarios" / "centrifuge_generation_graded_small.json";
+  expect_same_run(run_on("graded_generation", scenario, 1), run_on("graded_generation", scenario, 2));
+}
+
+}  // namespace
+}  // namespace dfc::testing
