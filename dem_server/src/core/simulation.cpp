@@ -173,6 +173,7 @@ Simulation::SearchRadii Simulation::search_radii() const {
   r.install = settings_.particle_law.bonded() && !bonds_installed_ && (settings_.install_bonds_at_start || install_requested_);
   r.join = settings_.particle_law.bonded() && join_materials_requested_;
   r.search = r.install || r.join ? std::max(r.skin, 1.001 * materials_.largest_bond_gap()) : r.skin;
+  if (repeat_search_) r.search = std::max(r.search, *repeat_search_);
   return r;
 }
 
@@ -234,6 +235,8 @@ void Simulation::rebuild() {
   // in the canonical order (neighbour_search.hpp).
   const bool install = radii.install, join = radii.join;
   const double search = radii.search;
+  last_search_ = search;
+  repeat_search_.reset();
   std::vector<std::uint32_t> order;
   if (cell_) check_cell_width(2.0 * r_max + search);
   const CellGrid grid = cell_ ? build_cell_grid(particles_, 2.0 * r_max + search, *cell_, threads_, order)
@@ -456,14 +459,17 @@ const ContactOutputs& Simulation::contact_outputs() const {
   return outputs_;
 }
 
-void Simulation::step(double dt, ContactRecord record) {
+void Simulation::prepare_step(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw UserError("the time step must be a positive number of seconds");
   if (stale_) rebuild();
   for (auto& wall : walls_)
     if (wall.motion == WallMotion::prescribed)
       std::fill(wall.vertex_velocity.begin(), wall.vertex_velocity.end(), step_ >= wall.start_step ? wall.prescribed_velocity : Vec3{});
-
   if (join_materials_requested_) balance_seams(dt);
+}
+
+void Simulation::step(double dt, ContactRecord record) {
+  prepare_step(dt);
   outputs_complete_ = record == ContactRecord::complete;
   if (compute_contact_forces(dt, record)) {
     std::ostringstream msg;

@@ -224,6 +224,8 @@ struct SimulationLayout {
   std::int64_t step_;
   std::size_t rebuilds_;
   bool stale_, bonds_installed_, install_requested_, join_materials_requested_;
+  double last_search_;                   // not saved: read only by repeat_last_search, which a decomposed body's first step calls
+  std::optional<double> repeat_search_;  // not saved: set and taken within that step
   SeamBalanceReport seam_report_;
   std::optional<HistoryArchive> seeded_pairs_;
   std::optional<std::vector<HistoryArchive>> seeded_walls_;  // not saved: replace_body's, taken by the rebuild that follows it at once

@@ -170,25 +170,21 @@ double DistributedSimulation::critical_timestep() const {
 void DistributedSimulation::step(double dt, ContactRecord record) {
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
-  if (!decomposed_ && (whole_body_steps_ || local_.seam_balance_pending())) {
+  if (!decomposed_ && local_.seam_balance_pending()) {
     // A graded body's seam balance (seam_balance.hpp) solves over the whole
-    // body, and the lists of its step are searched to the bonding gap (a
-    // coarser grid than the skin's, so another canonical order): until the
-    // whole body's lists are next due for a rebuild, every process steps the
-    // whole body as on one; the body is decomposed at that rebuild, where the
-    // whole body's own lists would take the skin's grid too.
-    if (!whole_body_steps_) {
-      const auto held = std::int64_t(local_.particles().size());
-      std::int64_t fewest = 0, most = 0;
-      MPI_Allreduce(&held, &fewest, 1, MPI_INT64_T, MPI_MIN, comm_);
-      MPI_Allreduce(&held, &most, 1, MPI_INT64_T, MPI_MAX, comm_);
-      if (fewest != most)  // on every process alike
-        throw UserError("a graded body's seam balance solves over the whole body: build the whole body on every process before its first step");
-      owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);
-    }
-    collectively([&] { local_.step(dt, record); });
-    whole_body_steps_ = !local_.lists_stale();  // the same on every process: each steps the same body
-    return;
+    // body: every process (each holding the whole body) takes the start of
+    // the first step as on one, the rebuild that joins the zones and the
+    // balance; the parts then rebuild at the same positions with the same
+    // search (to the bonding gap), so with the whole body's grid and order.
+    const auto held = std::int64_t(local_.particles().size());
+    std::int64_t fewest = 0, most = 0;
+    MPI_Allreduce(&held, &fewest, 1, MPI_INT64_T, MPI_MIN, comm_);
+    MPI_Allreduce(&held, &most, 1, MPI_INT64_T, MPI_MAX, comm_);
+    if (fewest != most)  // on every process alike
+      throw UserError("a graded body's seam balance solves over the whole body: build the whole body on every process before its first step");
+    owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);
+    collectively([&] { local_.prepare_step(dt); });
+    local_.repeat_last_search();
   }
   if (!decomposed_ || rebuild_requested_) {
     rebuild_requested_ = false;

@@ -149,8 +149,6 @@ class DistributedSimulation {
   std::vector<std::vector<std::uint32_t>> send_slots_, receive_slots_;
   bool decomposed_ = false;
   bool rebuild_requested_ = false;
-  /// Stepping the whole body on every process until its lists are due (a graded body's seam balance, see step).
-  bool whole_body_steps_ = false;
   std::optional<RcbDecomposition> rcb_;  ///< the boxes of the last decomposition
   struct Buffers;
   std::unique_ptr<Buffers> buffers_;  ///< a decomposition's exchange buffers, kept for the next

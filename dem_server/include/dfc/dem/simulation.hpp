@@ -105,6 +105,15 @@ class Simulation {
   /// record = gathered_only when nothing reads contact_outputs() before the
   /// next step (a step in the middle of a run): faster, same motion.
   void step(double dt, ContactRecord record = ContactRecord::complete);
+  /// The start of step(dt) before any force: the rebuild due, the prescribed
+  /// walls' velocities, a requested seam balance. step() calls it; a
+  /// decomposed body calls it on the whole body first, where the seam balance
+  /// solves over the whole body (distributed_simulation.hpp), and then steps.
+  void prepare_step(double dt);
+  /// The next rebuild searches at least as far as the last one did, so that
+  /// it takes the same grid and the same canonical order (a decomposed body's
+  /// parts after a rebuild that searched to the bonding gap).
+  void repeat_last_search() noexcept { repeat_search_ = last_search_; }
   /// `steps` steps of dt; refuses dt > critical_timestep() with SolverError.
   /// Contact outputs are complete after the last step.
   void run(std::int64_t steps, double dt);
@@ -170,8 +179,6 @@ class Simulation {
   /// Sets whether the next step rebuilds: a decomposed run replaces each
   /// part's own decision by the whole body's.
   void set_lists_stale(bool stale) noexcept { stale_ = stale; }
-  /// Whether the next step rebuilds the lists.
-  [[nodiscard]] bool lists_stale() const noexcept { return stale_; }
   /// m, the cell size of the last rebuild's grid: the slots are in the order
   /// of the cells floor(x_ref / size) (x_ref: reference_positions()), then ids.
   [[nodiscard]] double cell_size() const noexcept { return cell_size_; }
@@ -311,6 +318,8 @@ class Simulation {
   bool bonds_installed_ = false;
   bool install_requested_ = false;
   bool join_materials_requested_ = false;
+  double last_search_ = 0.0;              ///< m, the search radius of the last rebuild
+  std::optional<double> repeat_search_;   ///< repeat_last_search(), taken by the next rebuild
   SeamBalanceReport seam_report_;
 
   std::optional<HistoryArchive> seeded_pairs_;  ///< seed_pair_history(), consumed by the next rebuild
