@@ -9,10 +9,12 @@
 //    particle id: a body on many processes is written in id order) and walls.
 // The scenarios: the bonded coupled pile (tests/e2e/scenarios/pile_bonded_restart.json:
 // soft bonds that break, the pile with its own damping, lists rebuilt), the
-// open pile's small variant (graded PCRM body, the coupling wall, the plug)
-// and the graded generation's small variant (generation on every process,
-// then decomposed, run to equilibrium). Ranks 3 and 4 run the bonded pile
-// only (label long). Built only where CMake found MPI.
+// open pile's small variant (graded PCRM body, the coupling wall, the plug),
+// the graded generation's small variant (generation on every process, then
+// decomposed, run to equilibrium), and the triaxial-walls and UCS small
+// variants (60 exchanges each: a prepared sample, servo-controlled walls).
+// Ranks 3 and 4 run the bonded pile only (label long). Built only where
+// CMake found MPI.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -32,23 +34,25 @@ namespace dfc::testing {
 namespace {
 
 /// `scenario` as the coupler reads it (its first variant, includes resolved),
-/// with the DEM on `ranks` processes, written into `folder`.
-std::filesystem::path on_ranks(const std::filesystem::path& scenario, int ranks, const std::filesystem::path& folder) {
+/// with the DEM on `ranks` processes (and at most `exchanges` exchanges, 0:
+/// the scenario's), written into `folder`.
+std::filesystem::path on_ranks(const std::filesystem::path& scenario, int ranks, const std::filesystem::path& folder, int exchanges) {
   const CommandResult expanded = run_command({coupler(), "expand", scenario.string()}, std::chrono::seconds(60));
   EXPECT_EQ(expanded.exit_status, 0) << expanded.output;
   nlohmann::json run = nlohmann::json::parse(expanded.output);
   if (run.is_array()) run = run.at(0);
   run["participants"]["dem"]["mpi_ranks"] = ranks;
   run["run"].erase("checkpoint_every");  // a body on many processes writes no checkpoint yet
+  if (exchanges > 0) run["run"]["exchanges"] = exchanges;
   const auto path = folder / ("scenario_" + std::to_string(ranks) + ".json");
   std::ofstream(path) << run.dump(1);
   return path;
 }
 
 /// Runs `scenario` on `ranks` processes; returns its results file.
-std::filesystem::path run_on(const std::string& name, const std::filesystem::path& scenario, int ranks) {
+std::filesystem::path run_on(const std::string& name, const std::filesystem::path& scenario, int ranks, int exchanges = 0) {
   const auto folder = fresh_directory("mpi_" + name + "_" + std::to_string(ranks));
-  const auto path = on_ranks(scenario, ranks, folder);
+  const auto path = on_ranks(scenario, ranks, folder, exchanges);
   const CommandResult result = run_command({coupler(), "run", path.string(), "--out", (folder / "run").string(), "--no-progress"},
                                            std::chrono::seconds(900));
   EXPECT_EQ(result.exit_status, 0) << result.output;
@@ -126,6 +130,22 @@ TEST(MpiRanks, OpenPileSmallVariantOnTwoProcessesHasTheBitsOfOne) {
   const auto many = run_on("open_pile", scenario, 2);
   expect_same_run(run_on("open_pile", scenario, 1), many);
   EXPECT_GT(h5::read_f64(h5::File::open_read_only(many), "/timeseries/dem_pile_plug_particles").back(), 0.0);
+}
+
+// A sample prepared in six walls (radius expansion, confinement, bonds) is
+// decomposed where its last rebuild saw it (Simulation::move_to_references):
+// its lists, and so its bits, stay the whole body's. 60 exchanges of shearing.
+TEST(MpiRanks, TriaxialWallsSmallVariantOnTwoProcessesHasTheBitsOfOne) {
+  const auto scenario = e2e_dir() / "scenarios" / "triaxial_walls_small.json";
+  const auto many = run_on("triaxial_walls", scenario, 2, 60);
+  expect_same_run(run_on("triaxial_walls", scenario, 1, 60), many);
+  EXPECT_GT(h5::read_f64(h5::File::open_read_only(many), "/timeseries/dem_axial_strain").back(), 0.0);
+}
+
+// Platens seated on a soft-bonded cylinder and closed at a strain rate.
+TEST(MpiRanks, UcsSmallVariantOnTwoProcessesHasTheBitsOfOne) {
+  const auto scenario = e2e_dir() / "scenarios" / "ucs_softbond_small.json";
+  expect_same_run(run_on("ucs", scenario, 1, 60), run_on("ucs", scenario, 2, 60));
 }
 
 TEST(MpiRanks, GradedGenerationSmallVariantOnTwoProcessesHasTheBitsOfOne) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -195,6 +196,37 @@ void Simulation::replace_body(ParticleStore particles, HistoryArchive pairs, std
   for (auto& w : wall_contacts_) w = WallContacts{};
   critical_step_.reset();
   stale_ = true;
+}
+
+Simulation::Places Simulation::move_to_references() {
+  Places now;
+  std::vector<std::uint32_t> by_id(particles_.size());
+  std::iota(by_id.begin(), by_id.end(), 0U);
+  std::sort(by_id.begin(), by_id.end(), [&](std::uint32_t a, std::uint32_t b) { return particles_.id[a] < particles_.id[b]; });
+  for (const std::uint32_t i : by_id) {
+    now.id.push_back(particles_.id[i]);
+    now.position.push_back(particles_.position[i]);
+  }
+  for (const Wall& w : walls_) now.wall_vertices.push_back(w.vertices);
+  now.wall_travel = max_wall_displacement_;
+  now.affine_approach = affine_approach_;
+  if (reference_positions_.size() != particles_.size() || reference_vertices_.size() != walls_.size())
+    throw std::logic_error("move_to_references: the body changed since its last rebuild");
+  particles_.position = reference_positions_;
+  for (std::size_t w = 0; w < walls_.size(); ++w) walls_[w].vertices = reference_vertices_[w];
+  repeat_last_search();
+  return now;
+}
+
+void Simulation::put_back(const Places& places) {
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const auto found = std::lower_bound(places.id.begin(), places.id.end(), particles_.id[i]);
+    if (found == places.id.end() || *found != particles_.id[i]) throw std::logic_error("put_back: particle " + std::to_string(particles_.id[i]) + " has no place");
+    particles_.position[i] = places.position[std::size_t(found - places.id.begin())];
+  }
+  for (std::size_t w = 0; w < walls_.size(); ++w) walls_[w].vertices = places.wall_vertices.at(w);
+  max_wall_displacement_ = places.wall_travel;
+  affine_approach_ = places.affine_approach;
 }
 
 void Simulation::rebuild_if_stale() {

@@ -170,23 +170,10 @@ double DistributedSimulation::critical_timestep() const {
 void DistributedSimulation::step(double dt, ContactRecord record) {
   using clock = std::chrono::steady_clock;
   const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
-  if (!decomposed_ && local_.seam_balance_pending()) {
-    // A graded body's seam balance (seam_balance.hpp) solves over the whole
-    // body: every process (each holding the whole body) takes the start of
-    // the first step as on one, the rebuild that joins the zones and the
-    // balance; the parts then rebuild at the same positions with the same
-    // search (to the bonding gap), so with the whole body's grid and order.
-    const auto held = std::int64_t(local_.particles().size());
-    std::int64_t fewest = 0, most = 0;
-    MPI_Allreduce(&held, &fewest, 1, MPI_INT64_T, MPI_MIN, comm_);
-    MPI_Allreduce(&held, &most, 1, MPI_INT64_T, MPI_MAX, comm_);
-    if (fewest != most)  // on every process alike
-      throw UserError("a graded body's seam balance solves over the whole body: build the whole body on every process before its first step");
-    owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);
-    collectively([&] { local_.prepare_step(dt); });
-    local_.repeat_last_search();
-  }
-  if (!decomposed_ || rebuild_requested_) {
+  if (!decomposed_) {
+    first_decomposition(dt);
+    rebuild_requested_ = false;
+  } else if (rebuild_requested_) {
     rebuild_requested_ = false;
     const auto t = clock::now();
     decompose();
@@ -205,6 +192,40 @@ void DistributedSimulation::step(double dt, ContactRecord record) {
   if (lists_used_up()) rebuild_requested_ = true;
   local_.set_lists_stale(false);
   stats_.halo_seconds += seconds_since(t);
+}
+
+void DistributedSimulation::first_decomposition(double dt) {
+  using clock = std::chrono::steady_clock;
+  const auto t = clock::now();
+  // A body that will not rebuild at its next step (one already stepped: a
+  // prepared sample) or whose next step solves over the whole body (a graded
+  // body's seam balance) must be held whole by every process: each takes
+  // what must be whole as on one, and then cuts the body where its last
+  // rebuild saw it.
+  const auto held = std::int64_t(local_.particles().size());
+  const int keeps_lists = local_.rebuild_count() > 0 && !local_.lists_stale() ? 1 : 0;
+  std::int64_t counts[3] = {-held, held, std::int64_t(keeps_lists || local_.seam_balance_pending())}, body[3] = {0, 0, 0};
+  MPI_Allreduce(counts, body, 3, MPI_INT64_T, MPI_MAX, comm_);
+  const bool whole_everywhere = -body[0] == body[1];
+  if (body[2] != 0 && !whole_everywhere)  // the same decision on every process
+    throw UserError("a body that has been stepped, or a graded body before its seam balance, is decomposed from the whole body: build (and step) it alike on every process");
+  owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);
+  if (local_.seam_balance_pending()) {
+    // The seam balance (seam_balance.hpp) solves over the whole body: the
+    // start of the first step, the rebuild that joins the zones and the
+    // balance, is taken on every process as on one.
+    collectively([&] { local_.prepare_step(dt); });
+  }
+  // Lists already built are kept: the parts rebuild where the whole body's
+  // last rebuild saw the particles and walls, with its search radius, so
+  // with its pairs, grid and canonical order; then everything goes back to
+  // where it is. Decomposing at the current positions would be a rebuild the
+  // whole body does not take, and other bits.
+  std::optional<Simulation::Places> places;
+  if (local_.rebuild_count() > 0 && !local_.lists_stale()) places = local_.move_to_references();
+  decompose();
+  if (places) local_.put_back(*places);
+  stats_.decompose_seconds += std::chrono::duration<double>(clock::now() - t).count();
 }
 
 bool DistributedSimulation::lists_used_up() const {

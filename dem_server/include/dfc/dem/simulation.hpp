@@ -114,6 +114,28 @@ class Simulation {
   /// it takes the same grid and the same canonical order (a decomposed body's
   /// parts after a rebuild that searched to the bonding gap).
   void repeat_last_search() noexcept { repeat_search_ = last_search_; }
+  /// Where the particles (by id) and the walls are, and the Verlet
+  /// bookkeeping of the walls' travel since the last rebuild.
+  struct Places {
+    std::vector<std::int64_t> id;  ///< increasing
+    std::vector<Vec3> position;    ///< m, of id[k]
+    std::vector<std::vector<Vec3>> wall_vertices;
+    double wall_travel = 0.0, affine_approach = 0.0;
+  };
+  /// Puts every particle and wall back where the last rebuild saw them (its
+  /// reference positions and vertices) and asks the next rebuild to search as
+  /// far as it did: that rebuild then makes the lists the last one made (the
+  /// same pairs, grid and canonical order). Returns the places to put back
+  /// after it (put_back). A stepped body decomposed over processes takes its
+  /// first decomposition so, and its bits do not change.
+  [[nodiscard]] Places move_to_references();
+  /// After the rebuild that followed move_to_references: every particle
+  /// (found by id in `places`) and wall back at `places`, with the walls'
+  /// travel and the affine approach since the last rebuild; the reference
+  /// positions stay those of the rebuild.
+  void put_back(const Places& places);
+  /// Whether the next step rebuilds the lists.
+  [[nodiscard]] bool lists_stale() const noexcept { return stale_; }
   /// `steps` steps of dt; refuses dt > critical_timestep() with SolverError.
   /// Contact outputs are complete after the last step.
   void run(std::int64_t steps, double dt);
