@@ -68,6 +68,19 @@ CouplerCheckpoint decode(std::string_view bytes, const fs::path& file) {
   return c;
 }
 
+/// The scenario as a resumed run must match it. How many processes run the
+/// DEM (participants.<slot>.mpi_ranks, mpi_launcher) changes no bit
+/// (docs/determinism.md §3): a run may resume on another count.
+nlohmann::json as_resumed(nlohmann::json document) {
+  if (const auto participants = document.find("participants"); participants != document.end() && participants->is_object())
+    for (auto& [slot, spec] : participants->items())
+      if (spec.is_object()) {
+        spec.erase("mpi_ranks");
+        spec.erase("mpi_launcher");
+      }
+  return document;
+}
+
 /// The key paths (JSON Pointers) where two scenario documents differ, at most a few.
 std::string differing_keys(const nlohmann::json& before, const nlohmann::json& now) {
   std::string keys;
@@ -141,9 +154,9 @@ CouplerCheckpoint RunCheckpoints::read() const {
 
 void RunCheckpoints::check_resumable(const CouplerCheckpoint& checkpoint, const Scenario& scenario,
                                      const std::vector<std::unique_ptr<Participant>>& participants) {
-  if (scenario_hash(checkpoint.scenario) != scenario_hash(scenario.document))
+  if (scenario_hash(as_resumed(checkpoint.scenario)) != scenario_hash(as_resumed(scenario.document)))
     throw UserError("cannot resume: the scenario differs from the one the checkpointed run started with, at " +
-                    differing_keys(checkpoint.scenario, scenario.document) +
+                    differing_keys(as_resumed(checkpoint.scenario), as_resumed(scenario.document)) +
                     "; resume with the run's own scenario (its folder's scenario.json) or start a new run");
   for (const auto& p : participants) {
     const std::string& slot = p->spec().slot;

@@ -201,11 +201,9 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
   info[protocol::monitor_units_key] = monitor_units();
   if (processes_ > 1) {
     info["processes"] = processes_;
-    // Checkpoints of a body on many processes are not written yet (docs/determinism.md §4): the capability is withdrawn.
-    info["capabilities"] = {protocol::capability::accepts_interface, protocol::capability::snapshot};
     if (rank_ == 0) std::cerr << "dem_server: on " << processes_ << " processes a snapshot holds the particles (by id) and the walls; "
-                                 << "particle_stress, bonds, contacts and the stress profile are written on one process only, "
-                                 << "and no checkpoint is written (docs/determinism.md §4)" << std::endl;
+                                 << "particle_stress, bonds, contacts and the stress profile are written on one process only (docs/determinism.md §4)"
+                              << std::endl;
   }
   nlohmann::json progress = nlohmann::json::array();
   for (const auto& protocol : model_.loading) protocol->progress_monitors(progress);

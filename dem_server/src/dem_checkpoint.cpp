@@ -17,20 +17,13 @@ namespace {
 constexpr std::uint32_t kLayoutVersion = 6;  ///< raise when the stored members change
 }  // namespace
 
-namespace {
-/// A body on many processes has no checkpoint yet (docs/determinism.md §4); configure withdrew the capability.
-void refuse_on_many_processes(int processes) {
-  if (processes > 1)
-    throw protocol::ProtocolError(protocol::ErrorCode::unsupported, "dem_server on " + std::to_string(processes) +
-                                                                        " processes writes no checkpoint yet; run it on one process (participants.dem.mpi_ranks 1) to checkpoint");
-}
-}  // namespace
-
 std::string DemBackend::checkpoint_state() {
-  refuse_on_many_processes(processes_);
   StateWriter out;
   out.value(kLayoutVersion);
-  sim().save_state(out);
+  // The whole body as one process holds it, gathered on rank 0 from a body
+  // on many processes: any process count restores it (restore_state loads it
+  // whole everywhere; the engine cuts it where its last rebuild saw it).
+  engine().save_whole_body(out);
   out.tag("averages");
   out.string(averages_.dump());  // numbers as shortest round-trip text: the same doubles come back
   out.tag("loading");
@@ -39,7 +32,6 @@ std::string DemBackend::checkpoint_state() {
 }
 
 void DemBackend::restore_state(std::string_view bytes) {
-  refuse_on_many_processes(processes_);
   engine_.reset();  // the body is replaced: its engine is made again at the next use
   StateReader in(bytes, "the dem_server checkpoint");
   if (in.value<std::uint32_t>() != kLayoutVersion) in.fail("state layout " + std::to_string(kLayoutVersion));

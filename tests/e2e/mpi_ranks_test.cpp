@@ -17,6 +17,9 @@
 // CMake found MPI.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstring>
 #include <fstream>
@@ -151,6 +154,63 @@ TEST(MpiRanks, UcsSmallVariantOnTwoProcessesHasTheBitsOfOne) {
 TEST(MpiRanks, GradedGenerationSmallVariantOnTwoProcessesHasTheBitsOfOne) {
   const auto scenario = e2e_dir() / "scenarios" / "centrifuge_generation_graded_small.json";
   expect_same_run(run_on("graded_generation", scenario, 1), run_on("graded_generation", scenario, 2));
+}
+
+/// `pid` and every process below it, deepest first (mpiexec starts the DEM's processes under it).
+std::vector<pid_t> process_tree(pid_t pid) {
+  std::vector<pid_t> tree;
+  for (const pid_t child : child_pids(pid))
+    for (const pid_t below : process_tree(child)) tree.push_back(below);
+  tree.push_back(pid);
+  return tree;
+}
+
+// A checkpoint written on N processes resumes on M (docs/determinism.md §3):
+// the bonded coupled pile on 2 processes, checkpointed at exchange 100 of 200
+// and killed (SIGKILL, every process), resumed on 3, has the bits of the run
+// on one process that was never interrupted; and a checkpoint of one process
+// resumes on 2 alike.
+TEST(MpiRanks, KilledOnTwoProcessesAndResumedOnThreeHasTheBitsOfTheUninterruptedRun) {
+  namespace fs = std::filesystem;
+  const auto scenario_file = e2e_dir() / "scenarios" / "pile_bonded_restart.json";
+  const fs::path dir = fresh_directory("mpi_restart");
+  const auto scenario_on = [&](int ranks, const fs::path& folder) {
+    const CommandResult expanded = run_command({coupler(), "expand", scenario_file.string()}, std::chrono::seconds(60));
+    nlohmann::json run = nlohmann::json::parse(expanded.output);
+    if (run.is_array()) run = run.at(0);
+    run["participants"]["dem"]["mpi_ranks"] = ranks;
+    run["run"]["checkpoint_every"] = 100;
+    run["output"] = {{"directory", folder.string()}};
+    const fs::path path = dir / ("scenario_" + std::to_string(ranks) + "_" + folder.filename().string() + ".json");
+    std::ofstream(path) << run.dump(1);
+    return path;
+  };
+  const fs::path killed = dir / "killed";
+  const fs::path log = dir / "killed.log";
+  const pid_t coupler_pid = start_command({coupler(), "run", scenario_on(2, killed).string(), "--no-progress"}, log);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(3);
+  while (!fs::exists(killed / "checkpoint/coupler.checkpoint") && std::chrono::steady_clock::now() < until) ::usleep(2'000);
+  ASSERT_TRUE(fs::exists(killed / "checkpoint/coupler.checkpoint")) << read_text(log);
+  ::kill(coupler_pid, SIGSTOP);  // frozen first, so that it starts nothing new while its servers are killed
+  for (const pid_t pid : process_tree(coupler_pid)) ::kill(pid, SIGKILL);
+  const int killed_status = wait_command(coupler_pid, std::chrono::seconds(10));
+  if (killed_status != 128 + SIGKILL) std::cerr << "note: the run ended (status " << killed_status << ") before it was killed\n";
+
+  const auto resumed = run_command({coupler(), "run", "--resume", killed.string(), scenario_on(3, killed).string(), "--no-progress"},
+                                   std::chrono::minutes(5));
+  ASSERT_EQ(resumed.exit_status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("after exchange 100"), std::string::npos) << resumed.output;
+  expect_same_run(bonded_pile_on_one(), killed / "results.h5");
+
+  // One process's checkpoint (the raw state) resumed on two.
+  const fs::path single = dir / "single";
+  const auto first = run_command({coupler(), "run", scenario_on(1, single).string(), "--no-progress"}, std::chrono::minutes(5));
+  ASSERT_EQ(first.exit_status, 0) << first.output;
+  const auto again = run_command({coupler(), "run", "--resume", single.string(), scenario_on(2, single).string(), "--no-progress"},
+                                 std::chrono::minutes(5));
+  ASSERT_EQ(again.exit_status, 0) << again.output;
+  EXPECT_NE(again.output.find("after exchange 100"), std::string::npos) << again.output;
+  expect_same_run(bonded_pile_on_one(), single / "results.h5");
 }
 
 }  // namespace

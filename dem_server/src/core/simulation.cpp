@@ -198,7 +198,7 @@ void Simulation::replace_body(ParticleStore particles, HistoryArchive pairs, std
   stale_ = true;
 }
 
-Simulation::Places Simulation::move_to_references() {
+Simulation::Places Simulation::places() const {
   Places now;
   std::vector<std::uint32_t> by_id(particles_.size());
   std::iota(by_id.begin(), by_id.end(), 0U);
@@ -210,6 +210,11 @@ Simulation::Places Simulation::move_to_references() {
   for (const Wall& w : walls_) now.wall_vertices.push_back(w.vertices);
   now.wall_travel = max_wall_displacement_;
   now.affine_approach = affine_approach_;
+  return now;
+}
+
+Simulation::Places Simulation::move_to_references() {
+  Places now = places();
   if (reference_positions_.size() != particles_.size() || reference_vertices_.size() != walls_.size())
     throw std::logic_error("move_to_references: the body changed since its last rebuild");
   particles_.position = reference_positions_;
@@ -227,6 +232,17 @@ void Simulation::put_back(const Places& places) {
   for (std::size_t w = 0; w < walls_.size(); ++w) walls_[w].vertices = places.wall_vertices.at(w);
   max_wall_displacement_ = places.wall_travel;
   affine_approach_ = places.affine_approach;
+}
+
+void Simulation::replace_body_at_references(ParticleStore at_reference, HistoryArchive pairs, std::vector<HistoryArchive> wall_rows,
+                                            const Places& now, std::size_t rebuilds) {
+  if (reference_vertices_.size() != walls_.size()) throw std::logic_error("replace_body_at_references: no rebuild to return to");
+  for (std::size_t w = 0; w < walls_.size(); ++w) walls_[w].vertices = reference_vertices_[w];
+  replace_body(std::move(at_reference), std::move(pairs), std::move(wall_rows));
+  repeat_last_search();
+  rebuild();
+  put_back(now);
+  rebuilds_ = rebuilds;
 }
 
 void Simulation::rebuild_if_stale() {

@@ -1,5 +1,7 @@
 #include "dfc/dem/distributed_simulation.hpp"
 
+#include "dfc/common/state_archive.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -94,6 +96,24 @@ void all_to_all(MPI_Comm comm, const std::vector<Bytes>& out, ByteBuffer& send, 
   in.resize(received);
   MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, in.data(), receive_counts.data(), receive_offsets.data(),
                 MPI_BYTE, comm);
+}
+
+/// Every process's `mine` one after the other in rank order, on `root` (empty elsewhere; collective).
+ByteBuffer gather_bytes(MPI_Comm comm, const Bytes& mine, int root) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const int count = as_count(mine.data.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(static_cast<std::size_t>(ranks));
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm);
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < counts.size(); ++q) {
+    offsets[q] = as_count(total);
+    total += std::size_t(counts[q]);
+  }
+  ByteBuffer all(rank == root ? total : 0);
+  MPI_Gatherv(mine.data.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm);
+  return all;
 }
 
 ParticleRecord record_of(const ParticleStore& p, std::size_t i, int owner) {
@@ -597,21 +617,120 @@ void DistributedSimulation::update_wall_forces() {
     add_wall_contact(local_.wall_results_for_edit(t.wall), t.facet, t.weights, t.force, t.point, with_couple ? &t.couple : nullptr);
 }
 
+void DistributedSimulation::save_whole_body(StateWriter& out) {
+  if (!decomposed_) {  // never cut: rank 0 holds the whole body
+    if (rank_ == 0) local_.save_state(out);
+    return;
+  }
+  // 1. Every process's own particles, each with its reference position (of
+  // the last rebuild, the whole body's), the history rows of their pairs
+  // (each by the owner of its first particle) and of their wall contacts.
+  const ParticleStore& p = local_.particles();
+  const auto reference = local_.reference_positions();
+  Bytes particles, pairs, walls;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (owned_[i]) {
+      particles.put(record_of(p, i, rank_));
+      particles.put(reference[i]);
+    }
+  const PairContacts& list = local_.pair_contacts();
+  const std::size_t whole_stride = local_.settings().particle_law.history_size();
+  std::vector<double> whole(whole_stride);
+  if (whole_stride != 0)
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (!owned_[list.first[k]] || list.whole_row_is_zero(k)) continue;
+      list.copy_whole_row(k, whole.data());
+      pairs.put(p.id[list.first[k]]);
+      pairs.put(p.id[list.second[k]]);
+      pairs.put_doubles(whole.data(), whole_stride);
+    }
+  for (std::size_t w = 0; w < local_.walls().size(); ++w) {
+    const WallContacts& wc = local_.wall_contacts(w);
+    for (std::size_t k = 0; k < wc.size(); ++k) {
+      const double* row = wc.history.data() + k * wc.stride;
+      if (!owned_[wc.particle[k]] || wc.stride == 0 || std::all_of(row, row + wc.stride, [](double v) { return v == 0.0; })) continue;
+      walls.put(std::int64_t(w));
+      walls.put(p.id[wc.particle[k]]);
+      walls.put(std::int64_t(wc.facet[k]));
+      walls.put_doubles(row, wc.stride);
+    }
+  }
+  const ByteBuffer all_particles = gather_bytes(comm_, particles, 0), all_pairs = gather_bytes(comm_, pairs, 0), all_walls = gather_bytes(comm_, walls, 0);
+  if (rank_ != 0) return;
+
+  // 2. The whole body at its references, and where it is now.
+  struct Gathered {
+    ParticleRecord record;
+    Vec3 reference;
+  };
+  std::vector<Gathered> body(all_particles.size() / sizeof(Gathered));
+  if (!body.empty()) std::memcpy(body.data(), all_particles.data(), all_particles.size());
+  std::sort(body.begin(), body.end(), [](const Gathered& a, const Gathered& b) { return a.record.id < b.record.id; });
+  ParticleStore at_reference;
+  Simulation::Places now = local_.places();
+  now.id.clear();
+  now.position.clear();
+  for (const Gathered& g : body) {
+    const ParticleRecord& r = g.record;
+    at_reference.id.push_back(r.id);
+    at_reference.position.push_back(g.reference);
+    at_reference.velocity.push_back(r.velocity);
+    at_reference.angular_velocity.push_back(r.angular_velocity);
+    at_reference.force.push_back(r.force);
+    at_reference.moment.push_back(r.moment);
+    at_reference.radius.push_back(r.radius);
+    at_reference.mass.push_back(r.mass);
+    at_reference.inertia.push_back(r.inertia);
+    at_reference.material.push_back(r.material);
+    now.id.push_back(r.id);
+    now.position.push_back(r.position);
+  }
+  std::vector<HistoryArchive::Key> keys;
+  std::vector<double> rows;
+  {
+    const std::size_t row_bytes = 2 * sizeof(std::int64_t) + whole_stride * sizeof(double);
+    const std::size_t count = whole_stride == 0 ? 0 : all_pairs.size() / row_bytes;
+    rows.resize(count * whole_stride);
+    for (std::size_t k = 0; k < count; ++k) {
+      Reader in{all_pairs.data() + k * row_bytes, all_pairs.data() + (k + 1) * row_bytes};
+      const auto a = in.get<std::int64_t>(), b = in.get<std::int64_t>();
+      keys.push_back({a, b});
+      in.get_doubles(rows.data() + k * whole_stride, whole_stride);
+    }
+  }
+  std::vector<HistoryArchive> wall_archives;
+  for (const auto& w : local_.walls()) wall_archives.emplace_back(w.law.history_size());
+  {
+    Reader in{all_walls.data(), all_walls.data() + all_walls.size()};
+    std::vector<double> row;
+    while (!in.done()) {
+      const auto w = std::size_t(in.get<std::int64_t>());
+      const auto id = in.get<std::int64_t>(), facet = in.get<std::int64_t>();
+      row.resize(wall_archives.at(w).stride());
+      in.get_doubles(row.data(), row.size());
+      wall_archives[w].add({id, facet}, row.data());
+    }
+    for (auto& a : wall_archives) a.seal();
+  }
+
+  // 3. Rank 0's part becomes the whole body for the write (its lists made
+  // where the whole body's last rebuild made them), then goes back.
+  StateWriter part;
+  local_.save_state(part);
+  const std::string part_bytes = part.take();
+  local_.replace_body_at_references(std::move(at_reference), HistoryArchive::adopt(whole_stride, std::move(keys), std::move(rows)),
+                                    std::move(wall_archives), now, local_.rebuild_count());
+  local_.save_state(out);
+  StateReader back(part_bytes, "this process's part of the body");
+  local_.load_state(back);
+}
+
 std::vector<ParticleRecord> DistributedSimulation::gather_particles(int root) const {
   const ParticleStore& p = local_.particles();
   Bytes mine;
   for (std::size_t i = 0; i < p.size(); ++i)
     if (owned_.empty() ? rank_ == 0 : owned_[i] != 0) mine.put(record_of(p, i, rank_));
-  const int count = as_count(mine.data.size());
-  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
-  std::size_t total = 0;
-  for (std::size_t q = 0; q < counts.size(); ++q) {
-    offsets[q] = as_count(total);
-    total += std::size_t(counts[q]);
-  }
-  ByteBuffer all(rank_ == root ? total : 0);
-  MPI_Gatherv(mine.data.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm_);
+  const ByteBuffer all = gather_bytes(comm_, mine, root);
   std::vector<ParticleRecord> out(all.size() / sizeof(ParticleRecord));
   if (!out.empty()) std::memcpy(out.data(), all.data(), all.size());
   std::sort(out.begin(), out.end(), [](const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; });

@@ -23,6 +23,7 @@
 #include <span>
 #include <vector>
 
+#include "dfc/common/state_archive.hpp"
 #include "dfc/dem/exact_sum.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/simulation.hpp"
@@ -65,6 +66,10 @@ class DemEngine {
   /// The whole body's particles ordered by id, on rank 0 (empty elsewhere;
   /// collective).
   [[nodiscard]] virtual ParticleStore whole_body_by_id() const = 0;
+  /// The whole body's Simulation::save_state into `out` on rank 0 (nothing
+  /// elsewhere; collective): the bytes the body on one process writes, which
+  /// any process count restores (a checkpoint; docs/determinism.md §3).
+  virtual void save_whole_body(StateWriter& out) = 0;
 
   /// Whether slot `i` is this process's (see owned()).
   [[nodiscard]] bool owns(std::size_t i) const {
@@ -91,6 +96,7 @@ class LocalEngine final : public DemEngine {
     return {values.begin(), values.end()};
   }
   [[nodiscard]] ParticleStore whole_body_by_id() const override;
+  void save_whole_body(StateWriter& out) override { simulation_.save_state(out); }
 
  private:
   Simulation& simulation_;

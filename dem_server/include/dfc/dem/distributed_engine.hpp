@@ -37,6 +37,7 @@ class DistributedEngine final : public DemEngine {
     return body_.gather_over_processes(values);
   }
   [[nodiscard]] ParticleStore whole_body_by_id() const override;
+  void save_whole_body(StateWriter& out) override { body_.save_whole_body(out); }
 
   /// The decomposition (benchmarks, tests).
   [[nodiscard]] const DistributedSimulation& decomposed() const noexcept { return body_; }

@@ -42,6 +42,7 @@
 
 #include <mpi.h>
 
+#include "dfc/common/state_archive.hpp"
 #include "dfc/dem/exact_sum.hpp"
 #include "dfc/dem/measurements.hpp"
 #include "dfc/dem/rcb_decomposition.hpp"
@@ -126,6 +127,13 @@ class DistributedSimulation {
   [[nodiscard]] Vec3 momentum() const;
   /// Replaces every process's partial `sums` by their exact total (their limbs added; collective).
   void sum_over_processes(std::span<ExactSum> sums) const;
+  /// The whole body's state as Simulation::save_state of the body on one
+  /// process writes it, into `out` on rank 0 (nothing elsewhere; collective):
+  /// the particles gathered by id, their lists rebuilt where the whole body's
+  /// last rebuild built them (replace_body_at_references), so a checkpoint
+  /// that any process count restores (each process loads it whole; the first
+  /// decomposition cuts it where its last rebuild saw it).
+  void save_whole_body(StateWriter& out);
   /// Every process's `values` one after the other in rank order, on every process (collective).
   [[nodiscard]] std::vector<double> gather_over_processes(std::span<const double> values) const;
 

@@ -129,6 +129,8 @@ class Simulation {
   /// after it (put_back). A stepped body decomposed over processes takes its
   /// first decomposition so, and its bits do not change.
   [[nodiscard]] Places move_to_references();
+  /// Where everything is now (see Places).
+  [[nodiscard]] Places places() const;
   /// After the rebuild that followed move_to_references: every particle
   /// (found by id in `places`) and wall back at `places`, with the walls'
   /// travel and the affine approach since the last rebuild; the reference
@@ -136,6 +138,16 @@ class Simulation {
   void put_back(const Places& places);
   /// Whether the next step rebuilds the lists.
   [[nodiscard]] bool lists_stale() const noexcept { return stale_; }
+  /// Replaces the body by `at_reference` (every particle at its reference
+  /// position of the last rebuild, the rest of its state as it is now) with
+  /// the history rows of its pairs and wall contacts (keyed by ids), and
+  /// rebuilds the lists there with the walls at their reference vertices and
+  /// the last rebuild's search radius; then puts the particles and walls at
+  /// `now`. The lists, slots and Verlet state are then those of a body that
+  /// was never cut: a body decomposed over processes, gathered on one for its
+  /// checkpoint (distributed_simulation.hpp). `rebuilds`: the count to keep.
+  void replace_body_at_references(ParticleStore at_reference, HistoryArchive pairs, std::vector<HistoryArchive> wall_rows, const Places& now,
+                                  std::size_t rebuilds);
   /// `steps` steps of dt; refuses dt > critical_timestep() with SolverError.
   /// Contact outputs are complete after the last step.
   void run(std::int64_t steps, double dt);
