@@ -16,10 +16,14 @@
 #endif
 
 int main(int argc, char** argv) {
-  const dfc::protocol::ServerProgram program{
+  dfc::protocol::ServerProgram program{
       "dem_server", "DEM of spheres (PFC-style linear contact, triangle-facet walls, pile) as a protocol v1 server",
       dfc::dem::dem_config_help(), [] { return std::make_unique<dfc::dem::DemBackend>(); },
       [](const nlohmann::json& section) { (void)dfc::dem::parse_dem_config(section); }};
+  program.extra_options =
+      "  --mpi                  run as one of the processes of 'mpiexec -n N dem_server --mpi ...': the body is decomposed\n"
+      "                         over them, rank 0 binds and speaks (the scenario key participants.dem.mpi_ranks starts it so;\n"
+      "                         docs/determinism.md section 3); needs a dem_server built with MPI (libopenmpi-dev)\n";
   bool mpi = false;
   for (int i = 1; i < argc; ++i) mpi = mpi || std::string_view(argv[i]) == "--mpi";
   if (!mpi) return dfc::protocol::run_server_main(argc, argv, program);

@@ -57,6 +57,7 @@ void print_help(const ServerProgram& program) {
             << (program.check_config ? "  --check-config FILE    read FILE (a configure section, the scenario's participants.<name>.config) as\n"
                                        "                         configure would, without building the model; exit 0 if valid, 2 naming the key if not\n"
                                      : "")
+            << program.extra_options
             << "  --help                 this text;  --version  solver and protocol versions\n\n"
             << "Configure section (the scenario part the coupler sends in 'configure'):\n"
             << program.config_help << "\n";

@@ -12,18 +12,7 @@ double DistributedEngine::max_over_processes(double value) const {
 
 ParticleStore DistributedEngine::whole_body_by_id() const {
   ParticleStore body;
-  for (const ParticleRecord& r : body_.gather_particles(0)) {
-    body.id.push_back(r.id);
-    body.position.push_back(r.position);
-    body.velocity.push_back(r.velocity);
-    body.angular_velocity.push_back(r.angular_velocity);
-    body.force.push_back(r.force);
-    body.moment.push_back(r.moment);
-    body.radius.push_back(r.radius);
-    body.mass.push_back(r.mass);
-    body.inertia.push_back(r.inertia);
-    body.material.push_back(r.material);
-  }
+  for (const ParticleRecord& r : body_.gather_particles(0)) append_record(body, r);
   return body;
 }
 

@@ -116,6 +116,23 @@ ByteBuffer gather_bytes(MPI_Comm comm, const Bytes& mine, int root) {
   return all;
 }
 
+/// The wall-contact rows of `bytes` ((wall, particle id, facet, row) each) as one archive per wall.
+std::vector<HistoryArchive> read_wall_rows(const ByteBuffer& bytes, const std::vector<Wall>& walls) {
+  std::vector<HistoryArchive> archives;
+  for (const auto& w : walls) archives.emplace_back(w.law.history_size());
+  Reader in{bytes.data(), bytes.data() + bytes.size()};
+  std::vector<double> row;
+  while (!in.done()) {
+    const auto w = std::size_t(in.get<std::int64_t>());
+    const auto id = in.get<std::int64_t>(), facet = in.get<std::int64_t>();
+    row.resize(archives.at(w).stride());
+    in.get_doubles(row.data(), row.size());
+    archives[w].add({id, facet}, row.data());
+  }
+  for (auto& a : archives) a.seal();
+  return archives;
+}
+
 ParticleRecord record_of(const ParticleStore& p, std::size_t i, int owner) {
   return {p.id[i], p.position[i], p.velocity[i], p.angular_velocity[i], p.force[i], p.moment[i], p.radius[i], p.mass[i], p.inertia[i], owner,
           p.material[i]};
@@ -459,16 +476,7 @@ void DistributedSimulation::decompose() {
   for (const ParticleRecord& r : records) {
     ids.push_back(r.id);
     owners.push_back(r.owner);
-    store.id.push_back(r.id);
-    store.position.push_back(r.position);
-    store.velocity.push_back(r.velocity);
-    store.angular_velocity.push_back(r.angular_velocity);
-    store.force.push_back(r.force);
-    store.moment.push_back(r.moment);
-    store.radius.push_back(r.radius);
-    store.mass.push_back(r.mass);
-    store.inertia.push_back(r.inertia);
-    store.material.push_back(r.material);
+    append_record(store, r);
   }
   // The rows whose particles are both here (each arrives once, see above);
   // the others are of pairs now apart beyond the reach with no bond, which
@@ -491,20 +499,7 @@ void DistributedSimulation::decompose() {
     }
   }
   HistoryArchive pair_archive = HistoryArchive::adopt(whole_stride, std::move(keys), std::move(rows));
-  std::vector<HistoryArchive> wall_archives;
-  for (const auto& w : walls) wall_archives.emplace_back(w.law.history_size());
-  {
-    Reader in{wall_bytes.data(), wall_bytes.data() + wall_bytes.size()};
-    std::vector<double> row;
-    while (!in.done()) {
-      const auto w = std::size_t(in.get<std::int64_t>());
-      const auto id = in.get<std::int64_t>(), facet = in.get<std::int64_t>();
-      row.resize(wall_archives.at(w).stride());
-      in.get_doubles(row.data(), row.size());
-      wall_archives[w].add({id, facet}, row.data());
-    }
-    for (auto& a : wall_archives) a.seal();
-  }
+  std::vector<HistoryArchive> wall_archives = read_wall_rows(wall_bytes, walls);
 
   // 4. The new part, its lists, and who sends whose motion after each step.
   local_.replace_body(std::move(store), std::move(pair_archive), std::move(wall_archives));
@@ -672,16 +667,8 @@ void DistributedSimulation::save_whole_body(StateWriter& out) {
   now.position.clear();
   for (const Gathered& g : body) {
     const ParticleRecord& r = g.record;
-    at_reference.id.push_back(r.id);
-    at_reference.position.push_back(g.reference);
-    at_reference.velocity.push_back(r.velocity);
-    at_reference.angular_velocity.push_back(r.angular_velocity);
-    at_reference.force.push_back(r.force);
-    at_reference.moment.push_back(r.moment);
-    at_reference.radius.push_back(r.radius);
-    at_reference.mass.push_back(r.mass);
-    at_reference.inertia.push_back(r.inertia);
-    at_reference.material.push_back(r.material);
+    append_record(at_reference, r);
+    at_reference.position.back() = g.reference;
     now.id.push_back(r.id);
     now.position.push_back(r.position);
   }
@@ -698,20 +685,7 @@ void DistributedSimulation::save_whole_body(StateWriter& out) {
       in.get_doubles(rows.data() + k * whole_stride, whole_stride);
     }
   }
-  std::vector<HistoryArchive> wall_archives;
-  for (const auto& w : local_.walls()) wall_archives.emplace_back(w.law.history_size());
-  {
-    Reader in{all_walls.data(), all_walls.data() + all_walls.size()};
-    std::vector<double> row;
-    while (!in.done()) {
-      const auto w = std::size_t(in.get<std::int64_t>());
-      const auto id = in.get<std::int64_t>(), facet = in.get<std::int64_t>();
-      row.resize(wall_archives.at(w).stride());
-      in.get_doubles(row.data(), row.size());
-      wall_archives[w].add({id, facet}, row.data());
-    }
-    for (auto& a : wall_archives) a.seal();
-  }
+  std::vector<HistoryArchive> wall_archives = read_wall_rows(all_walls, local_.walls());
 
   // 3. Rank 0's part becomes the whole body for the write (its lists made
   // where the whole body's last rebuild made them), then goes back.
@@ -813,6 +787,19 @@ BondCounts DistributedSimulation::bond_counts() const {
   c.broken_tension = body[2];
   c.broken_shear = body[3];
   return c;
+}
+
+void append_record(ParticleStore& store, const ParticleRecord& r) {
+  store.id.push_back(r.id);
+  store.position.push_back(r.position);
+  store.velocity.push_back(r.velocity);
+  store.angular_velocity.push_back(r.angular_velocity);
+  store.force.push_back(r.force);
+  store.moment.push_back(r.moment);
+  store.radius.push_back(r.radius);
+  store.mass.push_back(r.mass);
+  store.inertia.push_back(r.inertia);
+  store.material.push_back(r.material);
 }
 
 }  // namespace dfc::dem

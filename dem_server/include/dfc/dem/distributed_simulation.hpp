@@ -60,6 +60,9 @@ struct ParticleRecord {
   std::uint16_t material = 0;
 };
 
+/// Appends `r` to `store` as a particle (its owner dropped).
+void append_record(ParticleStore& store, const ParticleRecord& r);
+
 /// What the last decomposition and the steps since moved (benchmarks, tests).
 struct DecompositionStats {
   std::size_t decompositions = 0;

@@ -30,6 +30,9 @@ struct ServerProgram {
   /// Whether a server declaring 1.7 or later uses the key file DFC_KEY_FILE
   /// names (SPEC.md §2.1); false only in a test fixture that breaks that rule on purpose.
   bool authentication = true;
+  /// Lines of options the program reads itself before run_server_main (for
+  /// --help; each "  --option  text\n"), e.g. dem_server's --mpi.
+  std::string extra_options = {};
 };
 
 /// main() of every server: parses --bind/--help/--version/--check-config, binds a ROUTER
