@@ -1,6 +1,7 @@
 #include "dfc/dem/dem_backend.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -47,10 +48,13 @@ double profile_slice_height(const PcrmConfig& pcrm) {
 /// errors and achieved K0, and says so when an interior slice (not the top or
 /// bottom one) is more than 5 % off: a body that is not at the geostatic state
 /// asked for is never left unsaid (docs/dem_generation.md, "Changing the g-level").
-void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, const StressProfile* target, std::vector<protocol::Array>& arrays) {
+/// `body`: the whole body's particles, `stress` their particle_stress (one
+/// row each), `steps` the steps taken.
+void append_profile_arrays(const ParticleStore& body, std::span<const Stress6> stress, std::int64_t steps, const PcrmConfig& pcrm,
+                           const StressProfile* target, std::vector<protocol::Array>& arrays) {
   const auto [lo, hi] = region_bounds(pcrm.region);
   const int slices = std::max(1, int(std::lround((hi.z - lo.z) / profile_slice_height(pcrm))));
-  const SliceProfile profile = slice_profile(s, pcrm.region, slices, 4.0 * largest_radius(s.particles()));
+  const SliceProfile profile = slice_profile(body.position, body.radius, stress, pcrm.region, slices, 4.0 * largest_radius(body));
   std::vector<double> depth, k0;
   for (std::size_t k = 0; k < profile.z.size(); ++k) {
     depth.push_back(pcrm.profile.surface_z - profile.z[k]);
@@ -62,7 +66,7 @@ void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, const St
   arrays.push_back(protocol::Array::from_f64("profile_sigma_h_pa", {k}, profile.sigma_h));
   arrays.push_back(protocol::Array::from_f64("profile_k0", {k}, k0));
   arrays.push_back(protocol::Array::from_f64("profile_porosity", {k}, profile.porosity));
-  if (target == nullptr || s.step_count() == 0) return;  // no contact force is known before the first step
+  if (target == nullptr || steps == 0) return;  // no contact force is known before the first step
   std::ostringstream line;
   line.precision(3);
   double worst = 0.0;
@@ -72,10 +76,10 @@ void append_profile_arrays(const Simulation& s, const PcrmConfig& pcrm, const St
     if (j > 0 && j + 1 < depth.size()) worst = std::max({worst, std::abs(ev), std::abs(eh)});
     line << (j == 0 ? "" : "; ") << 1e3 * depth[j] << " mm: sigma_v " << 100.0 * ev << " %, sigma_h " << 100.0 * eh << " %, K0 " << k0[j];
   }
-  std::cerr << "dem_server: generated body at step " << s.step_count() << ", stress per slice one REV cell high against gamma z and K0 gamma z (K0 "
+  std::cerr << "dem_server: generated body at step " << steps << ", stress per slice one REV cell high against gamma z and K0 gamma z (K0 "
             << target->k0 << " asked): " << line.str() << std::endl;
   if (worst > 0.05)
-    std::cerr << "dem_server: warning: at step " << s.step_count() << " an interior slice of the generated body is " << 100.0 * worst
+    std::cerr << "dem_server: warning: at step " << steps << " an interior slice of the generated body is " << 100.0 * worst
               << " % off the geostatic state asked for (more than 5 %); the achieved K0 per slice is the snapshot's profile_k0" << std::endl;
 }
 
@@ -112,6 +116,49 @@ void append_wall_arrays(const std::vector<Wall>& walls, std::vector<protocol::Ar
   // Which wall each facet is (its index in the DEM's wall list, the order of
   // the wall_<name> monitors): ParaView thresholds on it to show the pile alone.
   arrays.push_back(protocol::Array::from_i64("wall_facet_wall", {std::int64_t(facet_wall.size())}, facet_wall));
+}
+
+/// Per-particle Love–Weber stress (particle_stress.hpp) as particle_stress_pa:
+/// stress profiles and maps come from the file; ParaView shows it as a
+/// Tensor6 on the particles.
+void append_stress_array(std::span<const Stress6> stress, std::vector<protocol::Array>& arrays) {
+  std::vector<double> flat;
+  flat.reserve(6 * stress.size());
+  for (const Stress6& v : stress) flat.insert(flat.end(), v.begin(), v.end());
+  arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {std::int64_t(stress.size()), 6}, flat));
+}
+
+/// particle_stress of the whole body in particle id order, on rank 0 (empty
+/// elsewhere; collective): each process's owned particles, whose partners
+/// it all holds, so their rows have the bits of the body on one process.
+std::vector<Stress6> gathered_particle_stress(const DemEngine& engine) {
+  const Simulation& part = engine.part();
+  const std::vector<Stress6> local = particle_stress(part);
+  std::vector<double> mine;
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    if (!engine.owns(i)) continue;
+    mine.push_back(std::bit_cast<double>(part.particles().id[i]));  // the id's bits, exact
+    mine.insert(mine.end(), local[i].begin(), local[i].end());
+  }
+  const std::vector<double> all = engine.gather_on_root(mine);
+  std::vector<std::pair<double, Stress6>> rows(all.size() / 7);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    rows[r].first = all[7 * r];
+    std::copy_n(all.begin() + std::ptrdiff_t(7 * r + 1), 6, rows[r].second.begin());
+  }
+  const auto id_of = [](const auto& row) { return std::bit_cast<std::int64_t>(row.first); };
+  std::sort(rows.begin(), rows.end(), [&](const auto& a, const auto& b) { return id_of(a) < id_of(b); });
+  std::vector<Stress6> out;
+  out.reserve(rows.size());
+  for (const auto& row : rows) out.push_back(row.second);
+  return out;
+}
+
+/// Every process's `rows` on rank 0, ordered by their ids (empty elsewhere; collective).
+PairRows gathered_pair_rows(const DemEngine& engine, const PairRows& rows) {
+  PairRows all{.width = rows.width, .values = engine.gather_on_root(rows.values)};
+  sort_by_ids(all);
+  return all;
 }
 
 /// The local-damping forces of the last step over the slots `engine` owns,
@@ -199,12 +246,7 @@ nlohmann::json DemBackend::configure(const nlohmann::json& section) {
     info["preparation"] = p;
   }
   info[protocol::monitor_units_key] = monitor_units();
-  if (processes_ > 1) {
-    info["processes"] = processes_;
-    if (rank_ == 0) std::cerr << "dem_server: on " << processes_ << " processes a snapshot holds the particles (by id) and the walls; "
-                                 << "particle_stress, bonds, contacts and the stress profile are written on one process only (docs/determinism.md §4)"
-                              << std::endl;
-  }
+  if (processes_ > 1) info["processes"] = processes_;
   nlohmann::json progress = nlohmann::json::array();
   for (const auto& protocol : model_.loading) protocol->progress_monitors(progress);
   if (!progress.empty()) info[protocol::progress_monitors_key] = protocol::to_json(protocol::parse_progress_monitors({{protocol::progress_monitors_key, progress}}));
@@ -414,28 +456,42 @@ std::vector<protocol::Array> DemBackend::snapshot(std::string& kind) {
   append_particle_arrays(s.particles(), s.materials().count() > 1, arrays);
   // The rest as the DEM section's "snapshot" block chooses (snapshot_contents.hpp).
   const SnapshotContents& contents = config_.snapshot;
-  if (contents.particle_stress) {
-    // Per-particle Love–Weber stress (particle_stress.hpp): stress profiles and
-    // maps come from the file; ParaView shows it as a Tensor6 on the particles.
-    std::vector<double> stress;
-    stress.reserve(6 * s.particles().size());
-    for (const Stress6& v : particle_stress(s)) stress.insert(stress.end(), v.begin(), v.end());
-    arrays.push_back(protocol::Array::from_f64("particle_stress_pa", {std::int64_t(s.particles().size()), 6}, stress));
-  }
+  const auto& pcrm = config_.particles.pcrm;
+  std::vector<Stress6> stress;
+  if (contents.particle_stress || pcrm) stress = particle_stress(s);
+  if (contents.particle_stress) append_stress_array(stress, arrays);
   if (contents.bonds && s.settings().particle_law.bonded()) append_bond_arrays(s, arrays);
   if (contents.contacts) append_contact_arrays(s, contents.contacts_min_force, arrays);
-  if (const auto& pcrm = config_.particles.pcrm) append_profile_arrays(s, *pcrm, model_.generation ? &model_.generation->profile : nullptr, arrays);
+  if (pcrm) append_profile_arrays(s.particles(), stress, s.step_count(), *pcrm, model_.generation ? &model_.generation->profile : nullptr, arrays);
   if (contents.walls) append_wall_arrays(s.walls(), arrays);
   return arrays;
 }
 
 std::vector<protocol::Array> DemBackend::gathered_snapshot() {
-  // Every process takes part in the gather; rank 0 alone speaks, the others' arrays are dropped.
+  // The same arrays as one process writes, their rows in particle id order
+  // (snapshot_pairs.hpp): every process sends the rows of what it owns, rank 0
+  // orders them by id. Every process takes part in the gathers; rank 0 alone
+  // speaks, the others' arrays are dropped.
   const DemEngine& e = engine();
+  const Simulation& part = e.part();
+  const SnapshotContents& contents = config_.snapshot;
+  const auto& pcrm = config_.particles.pcrm;
   const ParticleStore body = e.whole_body_by_id();
+  std::vector<Stress6> stress;
+  if (contents.particle_stress || pcrm) stress = gathered_particle_stress(e);
+  const bool bonds = contents.bonds && part.settings().particle_law.bonded();
+  PairRows bond_table, contact_table;
+  if (bonds) bond_table = gathered_pair_rows(e, bond_rows(part, e.owned()));
+  if (contents.contacts) contact_table = gathered_pair_rows(e, contact_rows(part, contents.contacts_min_force, e.owned()));
+  if (e.rank() != 0) return {};
   std::vector<protocol::Array> arrays;
-  append_particle_arrays(body, e.part().materials().count() > 1, arrays);
-  if (config_.snapshot.walls) append_wall_arrays(e.part().walls(), arrays);
+  append_particle_arrays(body, part.materials().count() > 1, arrays);
+  if (contents.particle_stress) append_stress_array(stress, arrays);
+  const ParticleRows rows_of(body.id);
+  if (bonds) append_bond_arrays(bond_table, rows_of, bond_damage_written(part), arrays);
+  if (contents.contacts) append_contact_arrays(contact_table, rows_of, arrays);
+  if (pcrm) append_profile_arrays(body, stress, part.step_count(), *pcrm, model_.generation ? &model_.generation->profile : nullptr, arrays);
+  if (contents.walls) append_wall_arrays(part.walls(), arrays);
   return arrays;
 }
 

@@ -5,8 +5,12 @@
 //  - every time-series column (the DEM's monitors and forces, the pile's
 //    force split and plug, the continuum's side, the interface balance),
 //    except the wall-clock time;
-//  - every DEM snapshot's particles (position, velocity, radius, matched by
-//    particle id: a body on many processes is written in id order) and walls.
+//  - every DEM snapshot's arrays, all written (the snapshot block's contents
+//    particle_stress, bonds, contacts and walls): the particles (position,
+//    velocity, radius, stress, matched by particle id: a body on many
+//    processes is written in id order), the bonds and contacts (matched by
+//    the ids of their two particles; their index columns must name the same
+//    particles), a generated body's stress profile, and the walls.
 // The scenarios: the bonded coupled pile (tests/e2e/scenarios/pile_bonded_restart.json:
 // soft bonds that break, the pile with its own damping, lists rebuilt), the
 // open pile's small variant (graded PCRM body, the coupling wall, the plug),
@@ -45,6 +49,7 @@ std::filesystem::path on_ranks(const std::filesystem::path& scenario, int ranks,
   nlohmann::json run = nlohmann::json::parse(expanded.output);
   if (run.is_array()) run = run.at(0);
   run["participants"]["dem"]["mpi_ranks"] = ranks;
+  run["participants"]["dem"]["config"]["snapshot"]["contents"] = {"particle_stress", "bonds", "contacts", "walls"};
   run["run"].erase("checkpoint_every");  // a body on many processes writes no checkpoint yet
   if (exchanges > 0) run["run"]["exchanges"] = exchanges;
   const auto path = folder / ("scenario_" + std::to_string(ranks) + ".json");
@@ -78,6 +83,49 @@ std::vector<double> by_id(const std::vector<double>& values, const std::vector<s
   return out;
 }
 
+/// The rows of a snapshot's pair arrays (bond_* or contact_*), each its two
+/// particles' ids then the values of `columns` (i64 columns as doubles), in
+/// the order of the ids.
+std::vector<std::vector<double>> pair_rows(const h5::File& file, const std::string& group, const std::string& index_array,
+                                           const std::vector<std::string>& columns) {
+  const auto ids = file.root().open_dataset(group + "particle_id").read_i64();
+  const auto index = file.root().open_dataset(group + index_array).read_i64();
+  std::vector<std::vector<double>> values;
+  for (const std::string& column : columns) {
+    const auto dataset = file.root().open_dataset(group + column);
+    if (column == "bond_state" || column == "bond_particle_id") {
+      const auto v = dataset.read_i64();
+      values.emplace_back(v.begin(), v.end());
+    } else {
+      values.push_back(dataset.read_f64());
+    }
+  }
+  const std::size_t n = index.size() / 2;
+  std::vector<std::pair<std::pair<std::int64_t, std::int64_t>, std::vector<double>>> rows(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    rows[r].first = {ids.at(std::size_t(index[2 * r])), ids.at(std::size_t(index[2 * r + 1]))};
+    for (const auto& v : values) {
+      const std::size_t width = v.size() / n;
+      rows[r].second.insert(rows[r].second.end(), v.begin() + std::ptrdiff_t(r * width), v.begin() + std::ptrdiff_t((r + 1) * width));
+    }
+  }
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::vector<double>> out;
+  for (const auto& [pair, row] : rows) {
+    out.push_back({double(pair.first), double(pair.second)});
+    out.back().insert(out.back().end(), row.begin(), row.end());
+  }
+  return out;
+}
+
+/// Expects `b`'s rows to be `a`'s to the bit.
+void expect_same_rows(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  std::size_t differing = 0;
+  for (std::size_t r = 0; r < a.size(); ++r) differing += same_bits(a[r], b[r]) ? 0 : 1;
+  EXPECT_EQ(differing, 0U) << what << ": rows that differ, of " << a.size();
+}
+
 /// Expects `many` (a run on many processes) to hold the bits of `one`.
 void expect_same_run(const std::filesystem::path& one, const std::filesystem::path& many) {
   const auto a = h5::File::open_read_only(one);
@@ -98,8 +146,25 @@ void expect_same_run(const std::filesystem::path& one, const std::filesystem::pa
     const auto ids_b = b.root().open_dataset(group + "particle_id").read_i64();
     ASSERT_EQ(ids_a.size(), ids_b.size()) << group;
     ASSERT_FALSE(ids_a.empty()) << group;
-    for (const char* array : {"particle_position", "particle_velocity", "particle_radius"})
+    for (const char* array : {"particle_position", "particle_velocity", "particle_radius", "particle_stress_pa"})
       EXPECT_TRUE(same_bits(by_id(h5::read_f64(a, group + array), ids_a), by_id(h5::read_f64(b, group + array), ids_b))) << group << array;
+    ASSERT_EQ(a.root().has(group + "bond_particle_index"), b.root().has(group + "bond_particle_index")) << group;
+    if (a.root().has(group + "bond_particle_index")) {
+      std::vector<std::string> bond = {"bond_particle_id", "bond_state", "bond_position", "bond_normal_force_n", "bond_shear_force_n", "bond_opening_m"};
+      if (a.root().has(group + "bond_damage")) bond.emplace_back("bond_damage");
+      const auto rows = pair_rows(a, group, "bond_particle_index", bond);
+      expect_same_rows(rows, pair_rows(b, group, "bond_particle_index", bond), group + "bonds");
+      // bond_particle_id is the pair the index columns name.
+      for (const auto& row : rows) EXPECT_TRUE(row[0] == row[2] && row[1] == row[3]) << group << "bond_particle_id";
+    }
+    ASSERT_TRUE(a.root().has(group + "contact_particle_index") && b.root().has(group + "contact_particle_index")) << group;
+    expect_same_rows(pair_rows(a, group, "contact_particle_index", {"contact_normal_force_n", "contact_force_n"}),
+                     pair_rows(b, group, "contact_particle_index", {"contact_normal_force_n", "contact_force_n"}), group + "contacts");
+    ASSERT_EQ(a.root().has(group + "profile_sigma_v_pa"), b.root().has(group + "profile_sigma_v_pa")) << group;
+    if (a.root().has(group + "profile_sigma_v_pa")) {
+      for (const char* array : {"profile_depth_m", "profile_sigma_v_pa", "profile_sigma_h_pa", "profile_k0", "profile_porosity"})
+        EXPECT_TRUE(same_bits(h5::read_f64(a, group + array), h5::read_f64(b, group + array))) << group << array;
+    }
     if (a.root().has(group + "wall_vertices")) {
       EXPECT_TRUE(same_bits(h5::read_f64(a, group + "wall_vertices"), h5::read_f64(b, group + "wall_vertices"))) << group << "wall_vertices";
     }
@@ -179,6 +244,7 @@ TEST(MpiRanks, KilledOnTwoProcessesAndResumedOnThreeHasTheBitsOfTheUninterrupted
     nlohmann::json run = nlohmann::json::parse(expanded.output);
     if (run.is_array()) run = run.at(0);
     run["participants"]["dem"]["mpi_ranks"] = ranks;
+    run["participants"]["dem"]["config"]["snapshot"]["contents"] = {"particle_stress", "bonds", "contacts", "walls"};
     run["run"]["checkpoint_every"] = 100;
     run["output"] = {{"directory", folder.string()}};
     const fs::path path = dir / ("scenario_" + std::to_string(ranks) + "_" + folder.filename().string() + ".json");

@@ -73,27 +73,28 @@ int as_count(std::size_t n) {
   return int(n);
 }
 
+/// The offsets of blocks of `counts` items laid one after the other (MPI's
+/// displacements); returns the items in all.
+std::size_t place_one_after_another(const std::vector<int>& counts, std::vector<int>& offsets) {
+  std::size_t total = 0;
+  for (std::size_t q = 0; q < counts.size(); ++q) {
+    offsets[q] = as_count(total);
+    total += std::size_t(counts[q]);
+  }
+  return total;
+}
+
 /// Every process sends out[q] to process q; `in` receives what all sent to
 /// this one, in rank order (MPI_Alltoallv). `send` is scratch.
 void all_to_all(MPI_Comm comm, const std::vector<Bytes>& out, ByteBuffer& send, ByteBuffer& in) {
   const auto ranks = out.size();
   std::vector<int> send_counts(ranks), send_offsets(ranks), receive_counts(ranks), receive_offsets(ranks);
-  std::size_t total = 0;
-  for (std::size_t q = 0; q < ranks; ++q) {
-    send_counts[q] = as_count(out[q].data.size());
-    send_offsets[q] = as_count(total);
-    total += out[q].data.size();
-  }
-  send.resize(total);
+  for (std::size_t q = 0; q < ranks; ++q) send_counts[q] = as_count(out[q].data.size());
+  send.resize(place_one_after_another(send_counts, send_offsets));
   for (std::size_t q = 0; q < ranks; ++q)
     if (!out[q].data.empty()) std::memcpy(send.data() + send_offsets[q], out[q].data.data(), out[q].data.size());
   MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm);
-  std::size_t received = 0;
-  for (std::size_t q = 0; q < ranks; ++q) {
-    receive_offsets[q] = as_count(received);
-    received += std::size_t(receive_counts[q]);
-  }
-  in.resize(received);
+  in.resize(place_one_after_another(receive_counts, receive_offsets));
   MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, in.data(), receive_counts.data(), receive_offsets.data(),
                 MPI_BYTE, comm);
 }
@@ -106,11 +107,7 @@ ByteBuffer gather_bytes(MPI_Comm comm, const Bytes& mine, int root) {
   const int count = as_count(mine.data.size());
   std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(static_cast<std::size_t>(ranks));
   MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm);
-  std::size_t total = 0;
-  for (std::size_t q = 0; q < counts.size(); ++q) {
-    offsets[q] = as_count(total);
-    total += std::size_t(counts[q]);
-  }
+  const std::size_t total = place_one_after_another(counts, offsets);
   ByteBuffer all(rank == root ? total : 0);
   MPI_Gatherv(mine.data.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm);
   return all;
@@ -598,11 +595,7 @@ void DistributedSimulation::update_wall_forces() {
   const int count = as_count(mine.size() * sizeof(WallTerm));
   std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
   MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-  std::size_t total = 0;
-  for (std::size_t q = 0; q < counts.size(); ++q) {
-    offsets[q] = as_count(total);
-    total += std::size_t(counts[q]);
-  }
+  const std::size_t total = place_one_after_another(counts, offsets);
   std::vector<WallTerm> all(total / sizeof(WallTerm));
   MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, comm_);
   const auto place = [](const WallTerm& t) { return std::tie(t.wall, t.cell, t.id, t.facet); };
@@ -711,15 +704,21 @@ std::vector<ParticleRecord> DistributedSimulation::gather_particles(int root) co
   return out;
 }
 
+std::vector<double> DistributedSimulation::gather_on_root(std::span<const double> values, int root) const {
+  const int mine = as_count(values.size());
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
+  MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+  const std::size_t total = place_one_after_another(counts, offsets);
+  std::vector<double> all(rank_ == root ? total : 0);
+  MPI_Gatherv(values.data(), mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, root, comm_);
+  return all;
+}
+
 std::vector<double> DistributedSimulation::gather_over_processes(std::span<const double> values) const {
   const int mine = as_count(values.size());
   std::vector<int> counts(static_cast<std::size_t>(ranks_)), offsets(static_cast<std::size_t>(ranks_));
   MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
-  std::size_t total = 0;
-  for (std::size_t q = 0; q < counts.size(); ++q) {
-    offsets[q] = as_count(total);
-    total += std::size_t(counts[q]);
-  }
+  const std::size_t total = place_one_after_another(counts, offsets);
   std::vector<double> all(total);
   MPI_Allgatherv(values.data(), mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_);
   return all;

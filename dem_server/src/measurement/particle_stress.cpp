@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "dfc/dem/exact_sum.hpp"
 #include "dfc/dem/region_config.hpp"
 
 namespace dfc::dem {
@@ -54,6 +55,11 @@ std::vector<Stress6> particle_stress(const Simulation& sim) {
 }
 
 SliceProfile slice_profile(const Simulation& sim, const BedRegion& region, int slices, double margin) {
+  return slice_profile(sim.particles().position, sim.particles().radius, particle_stress(sim), region, slices, margin);
+}
+
+SliceProfile slice_profile(std::span<const Vec3> position, std::span<const double> radius, std::span<const Stress6> stress,
+                           const BedRegion& region, int slices, double margin) {
   BedRegion inner = region;
   if (region.shape == BedRegion::Shape::box) {
     inner.min = region.min + Vec3{margin, margin, 0.0};
@@ -65,29 +71,29 @@ SliceProfile slice_profile(const Simulation& sim, const BedRegion& region, int s
   const double height = (hi.z - lo.z) / double(slices);
   const double area = inner.shape == BedRegion::Shape::box ? (hi.x - lo.x) * (hi.y - lo.y) : std::numbers::pi * inner.radius * inner.radius;
   if (!(area > 0.0)) return {};
-  const std::vector<Stress6> stress = particle_stress(sim);
-  const ParticleStore& p = sim.particles();
-  std::vector<Stress6> moment(std::size_t(slices), Stress6{});
-  std::vector<double> solid(std::size_t(slices), 0.0);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Vec3& x = p.position[i];
+  // Per slice: the moments V_p sigma_p (zz, xx, yy) and the solid volume.
+  std::vector<std::array<ExactSum, 4>> sums(static_cast<std::size_t>(slices));
+  for (std::size_t i = 0; i < position.size(); ++i) {
+    const Vec3& x = position[i];
     const double z = x.z;
     if (z < lo.z || z >= hi.z) continue;
     const bool inside = inner.shape == BedRegion::Shape::box ? (x.x >= lo.x && x.x < hi.x && x.y >= lo.y && x.y < hi.y)
                                                              : std::hypot(x.x - inner.axis_x, x.y - inner.axis_y) < inner.radius;
     if (!inside) continue;
     const auto s = std::size_t(std::min(double(slices - 1), std::floor((hi.z - z) / height)));  // slice 0 at the top
-    const double v = sphere_volume(p.radius[i]);
-    for (std::size_t a = 0; a < 6; ++a) moment[s][a] += v * stress[i][a];
-    solid[s] += v;
+    const double v = sphere_volume(radius[i]);
+    sums[s][0].add(v * stress[i][5]);
+    sums[s][1].add(v * stress[i][0]);
+    sums[s][2].add(v * stress[i][3]);
+    sums[s][3].add(v);
   }
   SliceProfile out;
   const double volume = area * height;
   for (std::size_t s = 0; s < std::size_t(slices); ++s) {
     out.z.push_back(hi.z - (double(s) + 0.5) * height);
-    out.sigma_v.push_back(moment[s][5] / volume);
-    out.sigma_h.push_back(0.5 * (moment[s][0] + moment[s][3]) / volume);
-    out.porosity.push_back(1.0 - solid[s] / volume);
+    out.sigma_v.push_back(sums[s][0].value() / volume);
+    out.sigma_h.push_back(0.5 * (sums[s][1].value() + sums[s][2].value()) / volume);
+    out.porosity.push_back(1.0 - sums[s][3].value() / volume);
   }
   return out;
 }

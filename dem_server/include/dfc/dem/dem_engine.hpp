@@ -63,6 +63,9 @@ class DemEngine {
   /// Every process's `values` one after the other in rank order, on every
   /// process (collective). A caller that needs an order sorts them.
   [[nodiscard]] virtual std::vector<double> gather_over_processes(std::span<const double> values) const = 0;
+  /// Every process's `values` one after the other in rank order, on rank 0
+  /// (empty elsewhere; collective): rows of a snapshot, which only rank 0 writes.
+  [[nodiscard]] virtual std::vector<double> gather_on_root(std::span<const double> values) const = 0;
   /// The whole body's particles ordered by id, on rank 0 (empty elsewhere;
   /// collective).
   [[nodiscard]] virtual ParticleStore whole_body_by_id() const = 0;
@@ -95,6 +98,7 @@ class LocalEngine final : public DemEngine {
   [[nodiscard]] std::vector<double> gather_over_processes(std::span<const double> values) const override {
     return {values.begin(), values.end()};
   }
+  [[nodiscard]] std::vector<double> gather_on_root(std::span<const double> values) const override { return {values.begin(), values.end()}; }
   [[nodiscard]] ParticleStore whole_body_by_id() const override;
   void save_whole_body(StateWriter& out) override { simulation_.save_state(out); }
 

@@ -36,6 +36,7 @@ class DistributedEngine final : public DemEngine {
   [[nodiscard]] std::vector<double> gather_over_processes(std::span<const double> values) const override {
     return body_.gather_over_processes(values);
   }
+  [[nodiscard]] std::vector<double> gather_on_root(std::span<const double> values) const override { return body_.gather_on_root(values); }
   [[nodiscard]] ParticleStore whole_body_by_id() const override;
   void save_whole_body(StateWriter& out) override { body_.save_whole_body(out); }
 

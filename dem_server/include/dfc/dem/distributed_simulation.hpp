@@ -139,6 +139,8 @@ class DistributedSimulation {
   void save_whole_body(StateWriter& out);
   /// Every process's `values` one after the other in rank order, on every process (collective).
   [[nodiscard]] std::vector<double> gather_over_processes(std::span<const double> values) const;
+  /// Every process's `values` one after the other in rank order, on `root` (empty elsewhere; collective).
+  [[nodiscard]] std::vector<double> gather_on_root(std::span<const double> values, int root = 0) const;
 
  private:
   /// Decomposes the body anew and moves particles and history (collective).

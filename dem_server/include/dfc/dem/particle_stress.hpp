@@ -13,6 +13,7 @@
 // included); for a slice of a region V is the slice of the region, voids
 // included. Couples (bond moments) enter only through the forces.
 #include <array>
+#include <span>
 #include <vector>
 
 #include "dfc/dem/bed_generator.hpp"
@@ -38,6 +39,12 @@ struct SliceProfile {
 /// equal horizontal slices of `region`, its sides moved in by `margin` (m):
 /// the body's outermost layer, thinned by trimming and pressed by the walls,
 /// is left out so that the slices measure the body, not its boundary.
+/// The slice sums are exact (exact_sum.hpp), so the profile does not depend
+/// on the order of the particles: a body gathered by id from many processes
+/// gives the bits of the body on one.
 [[nodiscard]] SliceProfile slice_profile(const Simulation& simulation, const BedRegion& region, int slices, double margin = 0.0);
+/// The same for particles given by their centres, radii and stresses (one row each).
+[[nodiscard]] SliceProfile slice_profile(std::span<const Vec3> position, std::span<const double> radius, std::span<const Stress6> stress,
+                                         const BedRegion& region, int slices, double margin = 0.0);
 
 }  // namespace dfc::dem

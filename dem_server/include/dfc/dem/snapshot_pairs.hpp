@@ -25,6 +25,17 @@
 //                                     in tension shows negative)
 //   contact_force_n        f64 [c,3]  N, the whole force on the first sphere from the second
 // None before the first step.
+//
+// A body decomposed over many processes (issue "Beyond one machine") writes
+// the same rows: each process collects those of the pairs whose first
+// particle (the lower id) it owns, as a table with the two ids (PairRows);
+// rank 0 gathers the tables, orders the rows by their ids and maps the ids
+// to the rows of the snapshot's particle arrays (particle id order there).
+// One process keeps its list order and slots.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "dfc/dem/simulation.hpp"
@@ -32,10 +43,46 @@
 
 namespace dfc::dem {
 
-/// Appends the bond arrays above to `arrays` (bonded laws only).
+/// A snapshot's pairs as rows of doubles: the two particle ids first (their
+/// bits, std::bit_cast: exact for any id), then the values of the kind.
+struct PairRows {
+  std::size_t width = 0;
+  std::vector<double> values;
+  [[nodiscard]] std::size_t size() const noexcept { return width == 0 ? 0 : values.size() / width; }
+};
+
+/// The bond rows of the pairs whose first particle is owned (`owned` per
+/// slot; empty: every pair): ids, state, position (3), normal force, shear
+/// force, opening, and the damage where the law has one (bond_damage_written).
+[[nodiscard]] PairRows bond_rows(const Simulation& s, std::span<const std::uint8_t> owned);
+/// The contact rows of the pairs whose first particle is owned (as
+/// bond_rows) and whose normal force is at least `min_normal_force` (N) in
+/// magnitude: ids, normal force (compression positive), force (3).
+[[nodiscard]] PairRows contact_rows(const Simulation& s, double min_normal_force, std::span<const std::uint8_t> owned);
+/// Whether bond rows carry the damage (damage_bond).
+[[nodiscard]] bool bond_damage_written(const Simulation& s);
+/// Orders `rows` by their first, then second id (the order of a body on many processes).
+void sort_by_ids(PairRows& rows);
+
+/// The row of each particle id in a snapshot's particle arrays.
+class ParticleRows {
+ public:
+  explicit ParticleRows(std::span<const std::int64_t> ids);
+  [[nodiscard]] std::int64_t operator()(std::int64_t id) const;
+
+ private:
+  std::vector<std::pair<std::int64_t, std::int64_t>> by_id_;  ///< (id, row), sorted
+};
+
+/// Appends the bond arrays above for `rows` (bond_rows), their index columns the rows `rows_of` gives.
+void append_bond_arrays(const PairRows& rows, const ParticleRows& rows_of, bool with_damage, std::vector<protocol::Array>& arrays);
+/// Appends the contact arrays above for `rows` (contact_rows).
+void append_contact_arrays(const PairRows& rows, const ParticleRows& rows_of, std::vector<protocol::Array>& arrays);
+
+/// The bond arrays of a body on one process, in its list order (bonded laws only).
 void append_bond_arrays(const Simulation& s, std::vector<protocol::Array>& arrays);
 
-/// Appends the contact arrays above to `arrays`, the contacts whose normal
+/// The contact arrays of a body on one process, the contacts whose normal
 /// force is below `min_normal_force` (N) in magnitude left out.
 void append_contact_arrays(const Simulation& s, double min_normal_force, std::vector<protocol::Array>& arrays);
 
