@@ -4,6 +4,7 @@
 // with the same body stepped alone on rank 0.
 #include <cstring>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -234,6 +235,17 @@ TEST(DistributedSimulation, AnUnstableStepFailsOnEveryProcessWithTheSameKindOfEr
         for (int s = 0; s < 200; ++s) body.step(dt);
       },
       SolverError);
+}
+
+TEST(DistributedSimulation, APeriodicCellIsRefusedWithTheKeyThatRunsItOnOneProcess) {
+  Simulation local(settings(weak_pbond(), {0, 0, 0}));
+  local.set_periodic_cell({.lo = {0, 0, 0}, .hi = {0.02, 0.02, 0.02}, .periodic = {true, true, true}, .strain_rate = {}});
+  try {
+    const DistributedSimulation body(MPI_COMM_WORLD, local);
+    ADD_FAILURE() << "a periodic cell was decomposed";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("participants.dem.mpi_ranks to 1"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -160,7 +160,9 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, Simulation& local)
     : comm_(comm), local_(local), buffers_(std::make_unique<Buffers>()) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &ranks_);
-  if (local_.periodic_cell()) throw UserError("a periodic cell cannot be decomposed over processes yet; run it on one process");
+  if (local_.periodic_cell()) throw UserError(
+        "a periodic cell (the DEM section's \"periodic\" block) cannot be decomposed over processes yet: set participants.dem.mpi_ranks to 1 "
+        "and use participants.dem.config.threads for more cores");
   send_slots_.resize(std::size_t(ranks_));
   receive_slots_.resize(std::size_t(ranks_));
   owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);  // until the first decomposition: rank 0's body is the whole
@@ -242,7 +244,8 @@ void DistributedSimulation::first_decomposition(double dt) {
   MPI_Allreduce(counts, body, 3, MPI_INT64_T, MPI_MAX, comm_);
   const bool whole_everywhere = -body[0] == body[1];
   if (body[2] != 0 && !whole_everywhere)  // the same decision on every process
-    throw UserError("a body that has been stepped, or a graded body before its seam balance, is decomposed from the whole body: build (and step) it alike on every process");
+    // Not a scenario's error: dem_server builds and steps the model alike on every process.
+    throw std::logic_error("a body that has been stepped, or a graded body before its seam balance, is decomposed from the whole body: build (and step) it alike on every process");
   owned_.assign(local_.particles().size(), rank_ == 0 ? 1 : 0);
   if (local_.seam_balance_pending()) {
     // The seam balance (seam_balance.hpp) solves over the whole body: the
