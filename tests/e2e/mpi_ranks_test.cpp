@@ -17,8 +17,8 @@
 // the graded generation's small variant (generation on every process, then
 // decomposed, run to equilibrium), and the triaxial-walls and UCS small
 // variants (60 exchanges each: a prepared sample, servo-controlled walls).
-// Ranks 3 and 4 run the bonded pile only (label long). Built only where
-// CMake found MPI.
+// Ranks 3 and 4 run the bonded pile (label long), the open pile and the
+// graded generation (label slow). Built only where CMake found MPI.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -193,11 +193,32 @@ TEST(MpiRanksLong, BondedCoupledPileOnThreeAndFourProcessesHasTheBitsOfOne) {
   }
 }
 
+const std::filesystem::path& open_pile_on_one() {
+  static const auto results = run_on("open_pile", e2e_dir() / "scenarios" / "open_pile_small.json", 1);
+  return results;
+}
+
 TEST(MpiRanks, OpenPileSmallVariantOnTwoProcessesHasTheBitsOfOne) {
-  const auto scenario = e2e_dir() / "scenarios" / "open_pile_small.json";
-  const auto many = run_on("open_pile", scenario, 2);
-  expect_same_run(run_on("open_pile", scenario, 1), many);
+  const auto many = run_on("open_pile", e2e_dir() / "scenarios" / "open_pile_small.json", 2);
+  expect_same_run(open_pile_on_one(), many);
   EXPECT_GT(h5::read_f64(h5::File::open_read_only(many), "/timeseries/dem_pile_plug_particles").back(), 0.0);
+}
+
+const std::filesystem::path& graded_generation_on_one() {
+  static const auto results = run_on("graded_generation", e2e_dir() / "scenarios" / "centrifuge_generation_graded_small.json", 1);
+  return results;
+}
+
+// The open pile's and the graded generation's small variants on 3 and 4
+// processes: boxes that meet at more than one cut, a halo from several
+// neighbours.
+TEST(MpiRanksSlow, OpenPileAndGradedGenerationSmallVariantsOnThreeAndFourProcessesHaveTheBitsOfOne) {
+  for (const int ranks : {3, 4}) {
+    SCOPED_TRACE(std::to_string(ranks) + " processes");
+    expect_same_run(open_pile_on_one(), run_on("open_pile", e2e_dir() / "scenarios" / "open_pile_small.json", ranks));
+    expect_same_run(graded_generation_on_one(),
+                    run_on("graded_generation", e2e_dir() / "scenarios" / "centrifuge_generation_graded_small.json", ranks));
+  }
 }
 
 // A sample prepared in six walls (radius expansion, confinement, bonds) is
@@ -217,8 +238,7 @@ TEST(MpiRanks, UcsSmallVariantOnTwoProcessesHasTheBitsOfOne) {
 }
 
 TEST(MpiRanks, GradedGenerationSmallVariantOnTwoProcessesHasTheBitsOfOne) {
-  const auto scenario = e2e_dir() / "scenarios" / "centrifuge_generation_graded_small.json";
-  expect_same_run(run_on("graded_generation", scenario, 1), run_on("graded_generation", scenario, 2));
+  expect_same_run(graded_generation_on_one(), run_on("graded_generation", e2e_dir() / "scenarios" / "centrifuge_generation_graded_small.json", 2));
 }
 
 /// `pid` and every process below it, deepest first (mpiexec starts the DEM's processes under it).
