@@ -27,6 +27,20 @@ inline CavityMeshSpec spherical_test_mesh() {
   return spec;
 }
 
+/// The cylindrical cavity's strip mesh of the tests: a₀ = 1 m, b = 100 a₀,
+/// 60 radial divisions graded by 1.075 (the first ring 0.1 a₀ wide), one
+/// layer 0.1 a₀ high: 120 triangles.
+inline CavityMeshSpec cylindrical_test_mesh() {
+  CavityMeshSpec spec;
+  spec.inner_radius = 1.0;
+  spec.outer_radius = 100.0;
+  spec.radial_divisions = 60;
+  spec.radial_ratio = 1.075;
+  spec.tangential_divisions = 1;
+  spec.strip_height = 0.1;
+  return spec;
+}
+
 /// Cylindrical: `strip_mesh`, plane strain (both faces on rollers).
 /// Spherical: `quarter_annulus_mesh`, rollers on the equator and the axis.
 class CavityExpansion {

@@ -28,16 +28,8 @@ const constitutive::ElasticModuli kModuli = constitutive::moduli_from_young_pois
 // 0.1 a₀ wide, 0.033 a₀ at a = 3a₀), one layer 0.1 a₀ high: 120 triangles. The
 // cavity wall's elements stay well shaped up to a/a₀ = 3 (aspect ratio 3 at
 // the end), so no remeshing is needed for this test.
-CavityMeshSpec strip() {
-  CavityMeshSpec spec;
-  spec.inner_radius = kInitialRadius;
-  spec.outer_radius = kOuterRadius;
-  spec.radial_divisions = 60;
-  spec.radial_ratio = 1.075;
-  spec.tangential_divisions = 1;
-  spec.strip_height = 0.1;
-  return spec;
-}
+// (test::cylindrical_test_mesh(): a₀ = kInitialRadius, b = kOuterRadius.)
+CavityMeshSpec strip() { return test::cylindrical_test_mesh(); }
 
 test::CavityRun expand(std::shared_ptr<const constitutive::ConstitutiveModel> model, const SolverSettings& settings,
                        const test::Loading& loading) {
