@@ -226,19 +226,23 @@ void AxisymmetricSolver::move_and_update_stresses() {
   // change would smooth the elastic part twice.
   if (model_->needs_mean_stress_averaging() && settings_.volumetric_strain != VolumetricStrain::element) {
     const std::vector<double> smoothed = volumetric_field(volumes, plastic_mean_change);
-    for (Index t = 0; t < triangles; ++t) {
-      // The smoothing can move a state off a yield surface that has shrunk
-      // to nearly a point (a fully destructured Cam clay): a zero-strain
-      // update returns it; where that fails the unsmoothed state is kept.
-      Stress smoothed_stress = stresses_[t] + SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]);
-      std::vector<double> state(model_state_.begin() + std::ptrdiff_t(t * state_size), model_state_.begin() + std::ptrdiff_t((t + 1) * state_size));
-      model_->update(constitutive::StrainIncrement{SymTensor{}}, smoothed_stress, state);
-      if (!std::isfinite(smoothed_stress.trace())) continue;
-      stresses_[t] = smoothed_stress;
-      std::copy(state.begin(), state.end(), model_state_.begin() + std::ptrdiff_t(t * state_size));
-    }
+    // The smoothing can move a state off a yield surface that has shrunk to
+    // nearly a point (a fully destructured Cam clay): a zero-strain update
+    // returns it; where that fails the unsmoothed state is kept.
+    for (Index t = 0; t < triangles; ++t) (void)admit_stress(t, stresses_[t] + SymTensor::isotropic(smoothed[t] - plastic_mean_change[t]));
   }
   advance_flow();
+}
+
+bool AxisymmetricSolver::admit_stress(Index triangle, Stress stress) {
+  const std::size_t state_size = model_->state_size();
+  const auto first = model_state_.begin() + std::ptrdiff_t(triangle * state_size);
+  std::vector<double> state(first, first + std::ptrdiff_t(state_size));
+  model_->update(constitutive::StrainIncrement{SymTensor{}}, stress, state);
+  if (!std::isfinite(stress.trace())) return false;
+  stresses_[triangle] = stress;
+  std::copy(state.begin(), state.end(), first);
+  return true;
 }
 
 void AxisymmetricSolver::throw_failed_update(Index triangle, const Stress& before, const SymTensor& strain_increment) const {

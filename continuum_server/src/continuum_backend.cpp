@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <string>
 
@@ -85,8 +86,15 @@ protocol::AdvanceResult ContinuumBackend::advance(const protocol::AdvanceRequest
                       ": the mesh is too distorted for the penetration; refine the mesh at the pile, lower pile.step_m or set "
                       "mesh.remesh_below_area_ratio");
   if (m.remesh_below_area_ratio && smallest < *m.remesh_below_area_ratio) {
-    (void)m.solver->remesh(m.remesh_refine_deg);
+    const RemeshReport report = m.solver->remesh(m.remesh_refine_deg);
     ++remeshes_;
+    // Each remesh in the server's log: how much changed and how well the
+    // equilibrium correction converged (docs/continuum_pile.md §5).
+    std::cerr << "continuum_server: remesh " << remeshes_ << " at step " << m.solver->steps_taken() << " (pile "
+              << pile.penetration() * 1e3 << " mm): " << report.triangles_changed << " of " << report.triangles_after
+              << " triangles new, " << report.nodes_added << " nodes added; equilibrium: " << report.equilibrium_iterations
+              << " corrections, last mismatch " << report.equilibrium_residual << " N, unbalanced-force ratio "
+              << m.solver->unbalanced_force_ratio() << "\n";
     // The added nodes: their reference position is where they were added.
     const std::vector<Point>& nodes = m.solver->mesh().nodes;
     reference_nodes_.insert(reference_nodes_.end(), nodes.begin() + std::ptrdiff_t(reference_nodes_.size()), nodes.end());

@@ -107,24 +107,30 @@ TEST(OpenPileContinuum, SoilEntersTheTube) {
   EXPECT_LT(second, first);
 }
 
-// Remeshing during the push (docs/continuum_pile.md §6.5, not verified):
-// the run remeshes, reaches the depth, and re-equilibrates: at the end the
-// base carries the pile and the surcharge to 1 % (measured 0.46 %), and the
-// force recovers from the remesh's drop (1 007 → 804 N, then 875 N):
-// above 80 % of its value before the remesh.
+// Remeshing during the push (docs/continuum_pile.md §5, §6.5): the run
+// remeshes (at 1.8 mm), reaches the depth and re-equilibrates: at the end the
+// base carries the pile and the surcharge to 1 %. The remesh keeps each
+// node's out-of-balance force, so the force rises through it as at every
+// exchange, and after it follows the run that was not remeshed to the
+// issue's 1 % (measured +0.18 % and +0.34 % at 1.9 and 2 mm; before the
+// equilibrium correction it fell from 1 007 to 804 N).
 TEST(OpenPileContinuum, RemeshedRunReachesTheDepthAndReEquilibrates) {
   const std::filesystem::path file = run_scenario("open_pile_continuum_small_remesh");
   const std::vector<double> remeshes = series(file, "continuum_remeshes");
   const std::vector<double> force = series(file, "continuum_pile_force_n");
   const std::vector<double> base = series(file, "continuum_base_reaction_n");
   const std::vector<double> depth = series(file, "continuum_pile_displacement_m");
+  const std::vector<double> not_remeshed = column("pile_force_n");
   ASSERT_FALSE(remeshes.empty());
+  ASSERT_EQ(force.size(), not_remeshed.size());
   EXPECT_GE(remeshes.back(), 1.0);
   EXPECT_NEAR(depth.back(), 0.002, 1e-9);
   std::size_t first = 0;
   while (first < remeshes.size() && remeshes[first] < 1.0) ++first;
   ASSERT_GT(first, 0u);
-  EXPECT_GT(force.back(), 0.8 * force[first - 1]);
+  for (std::size_t i = 1; i < force.size(); ++i) EXPECT_GT(force[i], force[i - 1]) << "exchange " << i;
+  for (std::size_t i = first; i < force.size(); ++i)
+    EXPECT_NEAR(force[i], not_remeshed[i], 0.01 * not_remeshed[i]) << "exchange " << i << " (remeshed at exchange " << first << ")";
   const nlohmann::json c = config();
   const double radius = c.at("mesh").at("radius_m").get<double>();
   const double ri = c.at("pile").at("inner_radius_m").get<double>();

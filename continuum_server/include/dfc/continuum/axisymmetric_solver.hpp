@@ -67,6 +67,12 @@ struct RemeshReport {
   /// Σ ρ V of the new triangles with the transferred densities, before the
   /// correction that restores mass_before exactly, kg.
   double mass_transferred = 0.0;
+  /// Corrections of the transferred stresses towards the old nodal forces
+  /// (docs/continuum_pile.md §5), each followed by the model's return.
+  int equilibrium_iterations = 0;
+  /// The nodal force mismatch (norm, N) the last correction removed: below
+  /// 1e-6 of the internal forces' norm unless the iterations ran out.
+  double equilibrium_residual = 0.0;
 };
 
 enum class Axis { r = 0, z = 1 };
@@ -140,8 +146,14 @@ class AxisymmetricSolver {
   /// kept). Each new triangle takes the stress, history and density of the
   /// old triangle containing its centroid, corrected by the change of the
   /// field recovered at the nodes (volume-weighted means) between the two
-  /// centroids, so a triangle that was already there keeps its state; the
-  /// masses are then scaled so that the total is unchanged. Nodes, velocities
+  /// centroids (limited to the old values around that triangle), so a
+  /// triangle that was already there keeps its state. The stresses of the
+  /// new triangles and their neighbours are then corrected until every node
+  /// has the out-of-balance force it had before (a body in equilibrium stays
+  /// in it, the pile's contact force included), alternating the smallest
+  /// correction with the model's return to its yield surface
+  /// (equilibrium_correction.hpp). The masses are scaled so that the total
+  /// is unchanged. Nodes, velocities
   /// and boundary conditions are untouched. With `minimum_angle_deg` > 0 the
   /// triangulation is refined until no angle is smaller (CGAL Delaunay
   /// refinement); an added node takes the old mesh's velocity field, and one
@@ -178,6 +190,14 @@ class AxisymmetricSolver {
   /// Appends the refinement's nodes with their nodal fields, conditions and groups.
   std::vector<Interpolation> add_nodes(const Retriangulation& retriangulation, std::span<const Edge> boundary);
   [[nodiscard]] double measure_unbalanced_force_ratio() const;
+  /// Sets triangle t's stress to `stress` returned to the model's yield
+  /// surface by a zero-strain update (its history updated with it); false,
+  /// and nothing changed, where that update fails.
+  bool admit_stress(Index triangle, Stress stress);
+  /// After a remesh: corrects the stresses of the `adjustable` triangles
+  /// until every node's out-of-balance force is `unbalanced_before` again,
+  /// alternating NodalForceCorrection with admit_stress (docs/continuum_pile.md §5).
+  void restore_equilibrium(std::span<const Point> unbalanced_before, std::vector<bool> adjustable, RemeshReport& report);
 
   AxisymmetricMesh mesh_;
   std::shared_ptr<const constitutive::ConstitutiveModel> model_;
